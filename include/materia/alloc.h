@@ -1,0 +1,23 @@
+/*
+ * materia/alloc.h -- allocation statistics and fault injection, for tests.
+ *
+ * Every heap allocation the library makes goes through one function. The
+ * counter lets a test prove that rendering does not allocate per sample; the
+ * fault injector lets a test make the n-th allocation fail and check that the
+ * failure is reported cleanly and nothing leaks. The counter is atomic; the
+ * injector is meant for single-threaded tests.
+ */
+#ifndef MATERIA_ALLOC_H
+#define MATERIA_ALLOC_H
+
+#include <stddef.h>
+#include "materia/real.h"
+
+/* Allocations (malloc, calloc, realloc) made by the library so far. */
+MT_API unsigned long mt_alloc_count(void);
+
+/* Makes the allocation after n more succeed fail (n = 0: the next one), or
+ * disables injection when n < 0. */
+MT_API void mt_alloc_fail_after(long n);
+
+#endif

@@ -1,0 +1,36 @@
+/* The library's one allocator: counting and fault injection for tests. */
+#include <stdlib.h>
+#include <string.h>
+#include "materia/alloc.h"
+#include "core/alloc.h"
+
+static unsigned long alloc_count;
+static long fail_countdown = -1;
+
+static int should_fail(void)
+{
+    __atomic_add_fetch(&alloc_count, 1, __ATOMIC_RELAXED);
+    if (fail_countdown < 0) return 0;
+    if (fail_countdown == 0) {
+        fail_countdown = -1;
+        return 1;
+    }
+    fail_countdown--;
+    return 0;
+}
+
+unsigned long mt_alloc_count(void) { return __atomic_load_n(&alloc_count, __ATOMIC_RELAXED); }
+void mt_alloc_fail_after(long n) { fail_countdown = n < 0 ? -1 : n; }
+
+void *mt__malloc(size_t size) { return should_fail() ? NULL : malloc(size ? size : 1); }
+void *mt__calloc(size_t n, size_t size) { return should_fail() ? NULL : calloc(n ? n : 1, size ? size : 1); }
+void *mt__realloc(void *p, size_t size) { return should_fail() ? NULL : realloc(p, size ? size : 1); }
+void mt__free(void *p) { free(p); }
+
+char *mt__strdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = mt__malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}

@@ -1,0 +1,17 @@
+/*
+ * Internal: every heap allocation of the library goes through these, so that
+ * tests can count allocations (a render must not allocate per sample) and
+ * make the n-th allocation fail (every failure path must be clean).
+ */
+#ifndef MT_CORE_ALLOC_H
+#define MT_CORE_ALLOC_H
+
+#include <stddef.h>
+
+void *mt__malloc(size_t size);
+void *mt__calloc(size_t n, size_t size);
+void *mt__realloc(void *p, size_t size);
+void mt__free(void *p);
+char *mt__strdup(const char *s);
+
+#endif

@@ -1,0 +1,123 @@
+/*
+ * The errata catalog: every known pbrt-v2 error that materia reproduces in
+ * pbrt-v2 mode and fixes in corrected mode (conformance/ERRATA.md adds the
+ * measured effect of each). Entries with bit 0 are fixed in both modes,
+ * because pbrt-v2's behaviour there is NaN, Inf or memory corruption.
+ */
+#include <string.h>
+#include "materia/mode.h"
+
+static const mt_erratum errata[] = {
+    {"scaled-pdf", MT_FIX_SCALED_PDF, "bxdf", "reflection.h ScaledBxDF",
+     "ScaledBxDF does not override Pdf(), so BxDF::Pdf's cosine-hemisphere pdf is used for a "
+     "mix's components while Sample_f samples (and reports the pdf of) the wrapped BxDF",
+     "Pdf() of the wrapped BxDF; the scale affects f only"},
+    {"microfacet-fresnel-cosine", MT_FIX_MICROFACET_FRESNEL, "bxdf",
+     "reflection.cpp Microfacet::f",
+     "Fresnel is evaluated at Dot(wi, wh) with wh = normalize(wo + wi), which is never "
+     "negative: a dielectric is always seen from the eta_i side, even from below the surface",
+     "the cosine with wh turned to the +z hemisphere, negative from inside (pbrt-v3)"},
+    {"rho-world-space", MT_FIX_RHO_LOCAL, "bsdf", "reflection.cpp BSDF::rho",
+     "BSDF::rho(wo) passes the world-space wo to BxDF::rho, which expects the local frame",
+     "wo converted with WorldToLocal first"},
+    {"anisotropic-normal", MT_FIX_ANISOTROPIC_NORMAL, "bxdf",
+     "reflection.h Anisotropic::D, reflection.cpp Anisotropic::Pdf/Sample_f",
+     "D and the pdf return 0 when wh is exactly the normal (sin^2 theta_h = 0), where the "
+     "distribution has its maximum",
+     "the limit value: D = sqrt((ex+2)(ey+2))/(2 pi), pdf from sqrt((ex+1)(ey+1))/(2 pi)"},
+    {"glossy-sample-pdf", MT_FIX_GLOSSY_SAMPLE_PDF, "bxdf",
+     "reflection.cpp Microfacet::Sample_f, FresnelBlend::Sample_f, BRDFToBTDF",
+     "when the reflected direction lands in the other hemisphere, Sample_f returns f = 0 but "
+     "keeps the distribution's non-zero pdf; BSDF::Sample_f carries on with it, so with "
+     "translucent's transmission lobes the returned pdf is about twice Pdf()",
+     "pdf 0 for such samples (the sample fails), consistent with Pdf()"},
+    {"tangent-plane", MT_FIX_TANGENT_PLANE, "bsdf", "reflection.cpp BSDF::f, BSDF::Sample_f",
+     "the reflection test Dot(wo, ng) * Dot(wi, ng) > 0 counts a direction exactly in the "
+     "geometric tangent plane as transmission",
+     "such directions carry no energy: f = 0 (a set of measure zero: no integral changes)"},
+    {"bsdf-frame", MT_FIX_BSDF_FRAME, "bsdf", "reflection.cpp BSDF::BSDF",
+     "the frame is sn = normalize(dpdu), tn = cross(nn, sn): when dpdu is not perpendicular "
+     "to the shading normal the frame is not orthonormal, and local directions are not unit",
+     "sn made perpendicular to nn (Gram-Schmidt) before tn = cross(nn, sn)"},
+    {"dielectric-side", MT_FIX_DIELECTRIC_SIDE, "material",
+     "plastic.cpp, uber.cpp, translucent.cpp",
+     "the glossy coats build FresnelDielectric(1.5, 1) (or (index, 1)): the dielectric is "
+     "seen from inside, with false total internal reflection; uber's specular lobes refract "
+     "the opposite way to glass's",
+     "FresnelDielectric(1, index)"},
+    {"uber-opacity", MT_FIX_UBER_OPACITY, "material", "uber.cpp UberMaterial::GetBSDF",
+     "opacity is clamped from below only, so opacity > 1 gives a negative transmission",
+     "opacity clamped to [0, 1]"},
+    {"measured-empty", MT_FIX_MEASURED_EMPTY, "bxdf",
+     "reflection.cpp IrregIsotropicBRDF::f",
+     "when no sample lies within the largest search radius, f divides 0 by 0 (NaN); "
+     "materia returns 0 there in both modes",
+     "0 where no sample has weight"},
+    {"trilinear-width", MT_FIX_TRILINEAR_WIDTH, "texture", "mipmap.h MIPMap::Lookup",
+     "the isotropic (trilinear) lookup takes width = 2 max(|dst0|, |dst1|): twice the "
+     "filter footprint, so trilinear textures are blurrier than EWA ones",
+     "width = max(|dst0|, |dst1|)"},
+    {"marble-index", MT_FIX_MARBLE_INDEX, "texture", "marble.h MarbleTexture::Evaluate",
+     "t = 0.5 + 0.5 sin(...) reaches 1, and first = Floor2Int(t * NSEG) then reads c[first+3] "
+     "one past the colour table",
+     "first clamped to NSEG - 1 (as pbrt-v4)"},
+    {"mapping-3d", MT_FIX_MAPPING_3D, "texture", "texture.h IdentityMapping3D, its creators",
+     "the 3D mapping is built from the current transform (object to world) and applied to "
+     "world points: `Scale 2 2 2` makes a 3D pattern finer, not larger",
+     "the inverse (world to texture space), as for the 2D mappings"},
+    {"checker-one-sided", MT_FIX_CHECKER_ONE_SIDED, "texture",
+     "checkerboard.h Checkerboard2DTexture (closedform)",
+     "the box-filtered integral divides by the filter widths: one width 0 with the footprint "
+     "crossing an edge in the other direction gives 0/0; materia returns the unfiltered "
+     "value there in pbrt-v2 mode",
+     "point-sample along the zero-width axis, integrate along the other"},
+    {"cylindrical-axis", MT_FIX_CYLINDRICAL_AXIS, "texture",
+     "texture.cpp CylindricalMapping2D::Map",
+     "normalizes the point's direction from the axis; on the axis it is the zero vector and "
+     "the result is NaN; materia returns u = 0 there in pbrt-v2 mode",
+     "phi of the zero vector defined as 0 (u = 0.5 + atan2(0, 0)/2pi), v = z"},
+    {"mix-overflow", 0, "material", "mixmat.cpp MixMaterial::GetBSDF",
+     "a mix whose two materials have more than 8 BxDFs between them writes past the BSDF's "
+     "array (its Assert is compiled out in release builds)",
+     "an error when the mix is created (both modes)"},
+    {"specular-transmission-eta2", 0, "bxdf",
+     "reflection.cpp SpecularTransmission::Sample_f",
+     "the (eta_i/eta_t)^2 radiance scaling is commented out: the weight is (1 - F) T, the "
+     "form for importance transport; for a closed object the factors cancel",
+     "documented; both modes keep pbrt-v2's form, the MT_OPT_RADIANCE_TRANSMISSION option "
+     "applies the scaling"},
+    {"grazing-division", 0, "bxdf",
+     "reflection.cpp SpecularReflection/SpecularTransmission::Sample_f, FrDiel",
+     "divides by |cos theta_i| = 0 for an exactly grazing wo (Inf or NaN)",
+     "f = 0 and pdf = 0 there (both modes)"},
+    {"zero-dpdu", 0, "bsdf", "reflection.cpp BSDF::BSDF",
+     "normalize(dpdu) with dpdu = 0 (a sphere's poles) is NaN and poisons the frame",
+     "a frame from the shading normal alone (CoordinateSystem) in both modes"},
+};
+
+const mt_erratum *mt_errata(int *count)
+{
+    if (count) *count = (int)(sizeof errata / sizeof errata[0]);
+    return errata;
+}
+
+const char *mt_mode_name(mt_mode mode)
+{
+    mt_mode m = mode & ~MT_OPT_RADIANCE_TRANSMISSION;
+    if (m == MT_MODE_PBRT_V2) return "pbrt-v2";
+    if (m == MT_MODE_CORRECTED) return "corrected";
+    return "custom";
+}
+
+int mt_mode_parse(const char *name, mt_mode *mode)
+{
+    if (!strcmp(name, "pbrt-v2")) {
+        *mode = MT_MODE_PBRT_V2;
+        return 0;
+    }
+    if (!strcmp(name, "corrected")) {
+        *mode = MT_MODE_CORRECTED;
+        return 0;
+    }
+    return -1;
+}

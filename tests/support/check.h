@@ -1,0 +1,48 @@
+/*
+ * A small test vocabulary shared by the unit tests and the conformance suite.
+ * Every check prints one line -- "PASS name", "FAIL name: why", "XFAIL name:
+ * why" (an expected failure: a pbrt-v2 erratum reproduced) or "SKIP name:
+ * why" -- which tools/run-checks.sh counts.
+ */
+#ifndef MT_TEST_CHECK_H
+#define MT_TEST_CHECK_H
+
+#include <stdio.h>
+#include "materia.h"
+
+void t_pass(const char *name);
+void t_fail(const char *name, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+void t_xfail(const char *name, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+void t_skip(const char *name, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* PASS when cond holds, else FAIL with the formatted reason. Returns cond. */
+int t_check(int cond, const char *name, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* |got - want| <= tol (absolute); names the values on failure. */
+int t_near(double got, double want, double tol, const char *name);
+/* |got - want| <= rel * max(|want|, floor). */
+int t_rel(double got, double want, double rel, double floor, const char *name);
+/* Exit status for main: 1 when any check failed. */
+int t_status(void);
+/* Relative difference |a - b| / max(|a|, |b|, floor). */
+double t_reldiff(double a, double b, double floor);
+/* Distance in units in the last place between two values, in mt_real. */
+double t_ulps(mt_real a, mt_real b);
+/* The directory of the shared reference data, or NULL (tests say SKIP). */
+const char *t_shared_dir(void);
+
+#endif

@@ -1,0 +1,29 @@
+#!/bin/sh
+# Runs every test binary and the conformance suite, counts the PASS/FAIL lines
+# they print, and ends with "N passed, N failed". Exit status 1 on any failure
+# (a FAIL line, or a binary that exits non-zero or crashes).
+# usage: run-checks.sh BUILD_DIR PRECISION TEST_BINARY...
+build=$1; precision=$2; shift 2
+passed=0; failed=0; xfailed=0; skipped=0
+log=$(mktemp "${TMPDIR:-/tmp}/materia-check.XXXXXX") || exit 1
+trap 'rm -f "$log"' EXIT INT TERM
+run() {
+    name=$1; shift
+    "$@" >"$log" 2>&1
+    rc=$?
+    cat "$log"
+    p=$(grep -c '^PASS' "$log"); f=$(grep -c '^FAIL' "$log")
+    x=$(grep -c '^XFAIL' "$log"); s=$(grep -c '^SKIP' "$log")
+    passed=$((passed + p)); failed=$((failed + f)); xfailed=$((xfailed + x)); skipped=$((skipped + s))
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+        echo "FAIL $name: exited with status $rc"
+        failed=$((failed + 1))
+    fi
+}
+for t in "$@"; do
+    run "$(basename "$t")" "$t"
+done
+run materia-conformance "$build/bin/materia-conformance"
+echo "precision $precision: $xfailed expected failures (pbrt-v2 errata), $skipped skipped"
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
