@@ -65,12 +65,14 @@ CONF_SRC  := $(sort $(wildcard conformance/*.c))
 TOOL_SRC  := $(sort $(wildcard tools/*.c))
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 TSUP_SRC  := $(sort $(wildcard tests/support/*.c))
+BENCH_SRC := $(sort $(wildcard bench/*.c))
 
 LIB_OBJ   := $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
 CONF_OBJ  := $(CONF_SRC:%.c=$(BUILD)/obj/%.o)
 TSUP_OBJ  := $(TSUP_SRC:%.c=$(BUILD)/obj/%.o)
 TOOLS     := $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
 TESTS     := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+BENCHES   := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 CONF_BIN  := $(BUILD)/bin/materia-conformance
 
 STATIC_LIB := $(BUILD)/libmateria.a
@@ -78,13 +80,14 @@ SHARED_LIB := $(BUILD)/libmateria.so.$(VERSION)
 SONAME     := libmateria.so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 
-.PHONY: all lib tools tests check check-full bench demo install clean distclean help
+.PHONY: all lib tools tests benches check check-full bench demo install clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
 lib: $(STATIC_LIB) $(SHARED_LIB)
 tools: $(TOOLS)
 tests: $(TESTS) $(CONF_BIN)
+benches: $(BENCHES)
 
 $(CONFIG_H): Makefile
 	@mkdir -p $(dir $@)
@@ -118,6 +121,10 @@ $(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
+$(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
 # Every test binary, then the conformance suite; one summary line at the end.
 check: all tests
 	@sh tools/run-checks.sh $(BUILD) $(if $(filter double,$(PRECISION)),double,float) $(TESTS)
@@ -126,10 +133,12 @@ check: all tests
 check-full: all tests
 	$(CONF_BIN) --full
 
+# Every benchmark program in bench/, float and double builds alternating in
+# one run, with the double/float ratio of each figure.
 bench:
-	$(MAKE) PRECISION=float SANITIZE= all
-	$(MAKE) PRECISION=double SANITIZE= all
-	sh tools/run-bench.sh build/float/bin/materia-bench build/double/bin/materia-bench
+	$(MAKE) PRECISION=float SANITIZE= all benches
+	$(MAKE) PRECISION=double SANITIZE= all benches
+	sh tools/run-bench.sh build/float/bench build/double/bench
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/materia $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
@@ -154,4 +163,5 @@ help:
 	@sed -n '2,12p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
-         $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d)
+         $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
+         $(BENCH_SRC:bench/%.c=$(BUILD)/obj/bench/%.d)

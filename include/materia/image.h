@@ -1,0 +1,45 @@
+/*
+ * materia/image.h -- float images and their files: OpenEXR (through the C
+ * API, OpenEXRCore), PNG (libpng) and PFM.
+ *
+ * Pixels are stored as float, interleaved, row 0 at the top. Reading maps
+ * EXR channels by name (files store them sorted: B, G, R), converts 8- and
+ * 16-bit sRGB PNG to linear with materia's own transfer function, and reads
+ * PFM bottom-to-top as the format requires. Writing goes to a temporary file
+ * that is renamed into place, so an error never leaves a partial file.
+ */
+#ifndef MATERIA_IMAGE_H
+#define MATERIA_IMAGE_H
+
+#include "materia/error.h"
+
+typedef struct mt_image {
+    int width, height;
+    int channels; /* 1 (Y), 3 (RGB) or 4 (RGBA) */
+    float *data;  /* width * height * channels values, malloc'ed */
+} mt_image;
+
+/* Allocates a zeroed image; MT_ERR_NOMEM or MT_ERR_INVALID (bad size). */
+MT_API mt_status mt_image_alloc(mt_image *img, int width, int height, int channels,
+                                mt_error *err);
+MT_API void mt_image_free(mt_image *img);
+
+/* Reads .exr, .png or .pfm (by extension, case-insensitive). */
+MT_API mt_status mt_image_read(const char *path, mt_image *img, mt_error *err);
+
+/* A string attribute for the file's header (EXR only; ignored elsewhere). */
+typedef struct mt_image_attr {
+    const char *name, *value;
+} mt_image_attr;
+
+/* Writes by extension: EXR as float RGB(A) with ZIP compression, PNG as
+ * 8-bit sRGB (values clamped to [0, 1] after the transfer function), PFM as
+ * float RGB (or grayscale). */
+MT_API mt_status mt_image_write(const char *path, const mt_image *img, const mt_image_attr *attrs,
+                                int nattrs, mt_error *err);
+
+/* The sRGB transfer function and its inverse (IEC 61966-2-1). */
+MT_API float mt_srgb_to_linear(float v);
+MT_API float mt_linear_to_srgb(float v);
+
+#endif

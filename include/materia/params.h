@@ -1,0 +1,118 @@
+/*
+ * materia/params.h -- typed parameter lists, as pbrt-v2's ParamSet reads
+ * them: "float roughness" [0.1], "rgb Kd" [0.5 0.5 0.5], "texture bumpmap"
+ * "name", ...
+ *
+ * Spectra are converted to RGB when the list is built (pbrt-v2's RGB build):
+ * "rgb"/"color" as given, "xyz" by pbrt-v2's XYZ-to-RGB matrix, "spectrum"
+ * (wavelength/value pairs, or an SPD file name) and "blackbody" through
+ * pbrt-v2's CIE 1931 tables (see materia/spectrum.h).
+ *
+ * Every lookup marks its parameter used, so that a statement's unused
+ * parameters can be reported as pbrt-v2 reports them. A lookup of a name that
+ * exists with another type, or with the wrong number of values, is an error
+ * (pbrt-v2 silently ignores both): the message names the file, line and
+ * parameter.
+ */
+#ifndef MATERIA_PARAMS_H
+#define MATERIA_PARAMS_H
+
+#include "materia/error.h"
+#include "materia/rgb.h"
+#include "materia/vec.h"
+
+typedef enum mt_param_type {
+    MT_PARAM_FLOAT,
+    MT_PARAM_INTEGER,
+    MT_PARAM_BOOL,
+    MT_PARAM_STRING,
+    MT_PARAM_POINT,
+    MT_PARAM_VECTOR,
+    MT_PARAM_NORMAL,
+    MT_PARAM_SPECTRUM, /* rgb, color, xyz, spectrum, blackbody: stored as RGB */
+    MT_PARAM_TEXTURE
+} mt_param_type;
+
+/* One parameter. Values live in exactly one of the arrays:
+ *   float            reals, count values
+ *   integer, bool    ints, count values (bool: 0 or 1)
+ *   string, texture  strings, count values
+ *   point/vector/normal, spectrum   reals, 3 * count values */
+typedef struct mt_param {
+    const char *name;
+    mt_param_type type;
+    const char *type_name; /* as written: "color", "rgb", "xyz", "spectrum", "point3"... */
+    int count;
+    const double *reals;
+    const int *ints;
+    const char *const *strings;
+    const char *file; /* where the parameter was written (may be NULL) */
+    int line, column;
+    const char *dir;  /* directory that relative file names resolve against */
+} mt_param;
+
+typedef struct mt_paramset mt_paramset;
+
+MT_API mt_paramset *mt_paramset_create(void);
+MT_API void mt_paramset_destroy(mt_paramset *ps);
+/* A deep copy (the used marks included); NULL when memory is exhausted. */
+MT_API mt_paramset *mt_paramset_clone(const mt_paramset *ps);
+
+/* Adds a copy of p. A later parameter with the same name replaces an earlier
+ * one (pbrt-v2 erases the previous one of the same name and type). */
+MT_API mt_status mt_paramset_add(mt_paramset *ps, const mt_param *p, mt_error *err);
+
+MT_API int mt_paramset_count(const mt_paramset *ps);
+MT_API const mt_param *mt_paramset_at(const mt_paramset *ps, int i);
+/* The parameter called name (any type), or NULL. Does not mark it used. */
+MT_API const mt_param *mt_paramset_find(const mt_paramset *ps, const char *name);
+/* Marks name used (e.g. when a caller consumed it by other means). */
+MT_API void mt_paramset_mark_used(const mt_paramset *ps, const char *name);
+
+/* Typed lookups of single values: *out = the value when the parameter is
+ * present, def otherwise. ps may be NULL (no parameters). */
+MT_API mt_status mt_params_float(const mt_paramset *ps, const char *name, mt_real def,
+                                 mt_real *out, mt_error *err);
+MT_API mt_status mt_params_int(const mt_paramset *ps, const char *name, int def, int *out,
+                               mt_error *err);
+MT_API mt_status mt_params_bool(const mt_paramset *ps, const char *name, int def, int *out,
+                                mt_error *err);
+MT_API mt_status mt_params_string(const mt_paramset *ps, const char *name, const char *def,
+                                  const char **out, mt_error *err);
+/* A string naming a file, resolved against the directory of the statement
+ * that gave it (absolute names are kept). Writes at most size bytes. */
+MT_API mt_status mt_params_filename(const mt_paramset *ps, const char *name, const char *def,
+                                    char *out, size_t size, mt_error *err);
+MT_API mt_status mt_params_point(const mt_paramset *ps, const char *name, mt_vec3 def,
+                                 mt_vec3 *out, mt_error *err);
+MT_API mt_status mt_params_vector(const mt_paramset *ps, const char *name, mt_vec3 def,
+                                  mt_vec3 *out, mt_error *err);
+MT_API mt_status mt_params_normal(const mt_paramset *ps, const char *name, mt_vec3 def,
+                                  mt_vec3 *out, mt_error *err);
+MT_API mt_status mt_params_rgb(const mt_paramset *ps, const char *name, mt_rgb def, mt_rgb *out,
+                               mt_error *err);
+/* The name given by a "texture" parameter, or NULL when absent. */
+MT_API mt_status mt_params_texture(const mt_paramset *ps, const char *name, const char **out,
+                                   mt_error *err);
+
+/* Arrays (mesh data and the like): *values = NULL, *count = 0 when absent.
+ * For points, vectors and normals *count is the number of triples. */
+MT_API mt_status mt_params_floats(const mt_paramset *ps, const char *name, const double **values,
+                                  int *count, mt_error *err);
+MT_API mt_status mt_params_ints(const mt_paramset *ps, const char *name, const int **values,
+                                int *count, mt_error *err);
+MT_API mt_status mt_params_points(const mt_paramset *ps, const char *name, const double **values,
+                                  int *count, mt_error *err);
+MT_API mt_status mt_params_normals(const mt_paramset *ps, const char *name,
+                                   const double **values, int *count, mt_error *err);
+MT_API mt_status mt_params_vectors(const mt_paramset *ps, const char *name,
+                                   const double **values, int *count, mt_error *err);
+
+/* Warnings are delivered to the caller (the library never prints). */
+typedef void (*mt_warning_fn)(void *ctx, const char *file, int line, const char *message);
+
+/* Calls warn once per parameter that no lookup used: pbrt-v2's
+ * "Parameter "x" not used". */
+MT_API void mt_paramset_report_unused(const mt_paramset *ps, mt_warning_fn warn, void *ctx);
+
+#endif

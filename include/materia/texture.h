@@ -1,0 +1,98 @@
+/*
+ * materia/texture.h -- pbrt-v2's textures and their mappings.
+ *
+ * A texture is a reference-counted handle that evaluates to a float or to an
+ * RGB spectrum at a shading point (mt_diffgeom: p, u, v and the screen-space
+ * differentials). Every pbrt-v2 texture class exists with its name,
+ * parameters and defaults: constant, scale, mix, bilerp, imagemap, uv,
+ * checkerboard (2D with aamode none/closedform, and 3D), dots, fbm, wrinkled,
+ * windy, marble -- float and spectrum variants where pbrt-v2 has both (it has
+ * no float uv or marble).
+ *
+ * Textures are created from a statement's parameters by class name
+ * (mt_texture_create), which reads them as pbrt-v2's TextureParams does: the
+ * geometry's parameters first, then the material's, and "texture" parameters
+ * from the table of named textures.
+ */
+#ifndef MATERIA_TEXTURE_H
+#define MATERIA_TEXTURE_H
+
+#include "materia/diffgeom.h"
+#include "materia/mode.h"
+#include "materia/params.h"
+#include "materia/rgb.h"
+#include "materia/transform.h"
+
+typedef struct mt_texture mt_texture;
+typedef struct mt_texture_table mt_texture_table;
+
+MT_API mt_real mt_texture_eval_float(const mt_texture *t, const mt_diffgeom *dg);
+MT_API mt_rgb mt_texture_eval_rgb(const mt_texture *t, const mt_diffgeom *dg);
+MT_API int mt_texture_is_float(const mt_texture *t);
+MT_API const char *mt_texture_class(const mt_texture *t);
+MT_API mt_texture *mt_texture_retain(mt_texture *t);
+MT_API void mt_texture_release(mt_texture *t);
+
+/* Constant textures (what a plain value in a material's parameters becomes). */
+MT_API mt_texture *mt_texture_constant_float(mt_real v, mt_error *err);
+MT_API mt_texture *mt_texture_constant_rgb(mt_rgb v, mt_error *err);
+
+/* Named textures, in two namespaces (float and spectrum) as in pbrt-v2. */
+MT_API mt_texture_table *mt_texture_table_create(void);
+/* A copy sharing the textures (AttributeBegin); NULL when out of memory. */
+MT_API mt_texture_table *mt_texture_table_clone(const mt_texture_table *t);
+MT_API void mt_texture_table_destroy(mt_texture_table *t);
+/* Binds name to tex in tex's namespace, replacing an earlier binding. */
+MT_API mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture *tex,
+                                      mt_error *err);
+/* The texture bound to name, or NULL (no new reference). */
+MT_API mt_texture *mt_texture_table_get(const mt_texture_table *t, const char *name,
+                                        int is_float);
+
+/* pbrt-v2's TextureParams. */
+typedef struct mt_texparams {
+    const mt_paramset *geom;     /* may be NULL */
+    const mt_paramset *material; /* may be NULL */
+    const mt_texture_table *textures;
+    mt_mode mode;
+} mt_texparams;
+
+/* TextureParams::GetFloatTexture / GetSpectrumTexture: the named texture a
+ * "texture" parameter gives, else a constant from the value or def. Returns a
+ * new reference, or NULL (err filled: unknown texture name, wrong type). */
+MT_API mt_texture *mt_texparams_float_texture(const mt_texparams *tp, const char *name,
+                                              mt_real def, mt_error *err);
+MT_API mt_texture *mt_texparams_spectrum_texture(const mt_texparams *tp, const char *name,
+                                                 mt_rgb def, mt_error *err);
+/* A float texture only when the parameter is present (e.g. "bumpmap"):
+ * *out = NULL when absent. */
+MT_API mt_status mt_texparams_float_texture_opt(const mt_texparams *tp, const char *name,
+                                                mt_texture **out, mt_error *err);
+/* Scalar lookups, geometry parameters first (pbrt-v2 TextureParams::Find*). */
+MT_API mt_status mt_texparams_float(const mt_texparams *tp, const char *name, mt_real def,
+                                    mt_real *out, mt_error *err);
+MT_API mt_status mt_texparams_int(const mt_texparams *tp, const char *name, int def, int *out,
+                                  mt_error *err);
+MT_API mt_status mt_texparams_bool(const mt_texparams *tp, const char *name, int def, int *out,
+                                   mt_error *err);
+MT_API mt_status mt_texparams_string(const mt_texparams *tp, const char *name, const char *def,
+                                     const char **out, mt_error *err);
+MT_API mt_status mt_texparams_filename(const mt_texparams *tp, const char *name,
+                                       const char *def, char *out, size_t size, mt_error *err);
+MT_API mt_status mt_texparams_vector(const mt_texparams *tp, const char *name, mt_vec3 def,
+                                     mt_vec3 *out, mt_error *err);
+MT_API mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_rgb def,
+                                  mt_rgb *out, mt_error *err);
+
+/* Creates a texture of pbrt-v2 class class_name ("constant", "checkerboard",
+ * ...), float or spectrum, declared under the transform tex2world (pbrt-v2's
+ * current transform at the Texture statement). NULL with err filled for an
+ * unknown class, a class without that variant, or a bad parameter. */
+MT_API mt_texture *mt_texture_create(const char *class_name, int is_float,
+                                     const mt_transform *tex2world, const mt_texparams *tp,
+                                     mt_error *err);
+
+/* The class names, for help texts and tests; *count receives their number. */
+MT_API const char *const *mt_texture_classes(int *count);
+
+#endif
