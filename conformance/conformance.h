@@ -105,6 +105,9 @@ void cf_rejects_invalid(cf_rows *rows);
 /* The directions wo a subject is tested from. */
 int cf_wo_set(const cf_subject *s, mt_vec3 *wo, int max);
 
+/* The measured size of each BxDF/BSDF erratum (--errata). */
+int cf_errata_report(void);
+
 /* Float-versus-double comparison: --dump writes values, --ulps compares. */
 int cf_dump(const char *path);
 void cf_ulps(const char *other_binary, cf_rows *rows);
