@@ -163,20 +163,22 @@ static void test_constant(void)
 
 static void test_shapes(void)
 {
-    /* a ramp, a box between two wavelengths, and samples with a repeated
-     * wavelength (pbrt-v2 divides by zero there: the result stays finite) */
+    /* a ramp, a box between two wavelengths, and a repeated wavelength: a
+     * step, the lower value at 500 nm itself (pbrt-v2's first segment that
+     * holds 500 ends at the first of the sorted pairs), the same as a step a
+     * millionth of a nm later (1e-7 relative at most) */
     double ramp_l[2] = {830, 360}, ramp_v[2] = {1, 0};
     double box_l[4] = {450, 450.5, 600, 600.5}, box_v[4] = {0, 1, 1, 0};
-    double dup_l[4] = {400, 500, 500, 600}, dup_v[4] = {1, 2, 3, 4};
+    double dup_l[4] = {500, 600, 500, 400}, dup_v[4] = {3, 4, 2, 1};
+    double step_l[4] = {400, 500, 500.000001, 600}, step_v[4] = {1, 2, 3, 4};
     double want[3];
-    mt_rgb c;
     reference_rgb(ramp_l, ramp_v, 2, want);
     check_rgb(mt_spectrum_from_sampled(ramp_l, ramp_v, 2), want, REL, "ramp 360-830 nm");
     reference_rgb(box_l, box_v, 4, want);
     check_rgb(mt_spectrum_from_sampled(box_l, box_v, 4), want, REL, "box 450-600 nm");
-    c = mt_spectrum_from_sampled(dup_l, dup_v, 4);
-    t_check(mt_rgb_is_finite(c) && c.c[1] > 1, "repeated wavelength: finite", "got %g %g %g",
-            c.c[0], c.c[1], c.c[2]);
+    reference_rgb(step_l, step_v, 4, want);
+    check_rgb(mt_spectrum_from_sampled(dup_l, dup_v, 4), want, REL > 1e-7 ? REL : 1e-7,
+              "repeated wavelength: a step");
 }
 
 static void test_roundtrip(void)

@@ -43,9 +43,8 @@ static int pair_less(mt_real la, mt_real va, mt_real lb, mt_real vb)
  * samples), found without sorting: the first sorted sample when l is at or
  * below it, the last when at or above it, otherwise the segment from the
  * greatest sample below l to the least sample at or above l (its first
- * segment that contains l). Where pbrt-v2 would divide by a zero-width
- * segment (a wavelength given twice) this takes the segment's end, so the
- * result stays finite.
+ * segment that contains l, which is never one of zero width: a repeated
+ * wavelength is a step).
  */
 static mt_real interpolate(const double *lambda, const double *v, int n, int first, int last,
                            mt_real l)
