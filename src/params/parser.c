@@ -19,6 +19,7 @@
 #include "materia/parser.h"
 #include "params/decl.h"
 #include "params/numcheck.h"
+#include "params/parser_internal.h"
 #include "params/path.h"
 #include "params/tokenizer.h"
 
@@ -571,9 +572,9 @@ mt_status mt_parse_file(const char *path, const mt_parse_options *opt, mt_statem
     return parse_file_at(&P, path, 0, &self, err);
 }
 
-mt_status mt_parse_string(const char *text, const char *name, const char *dir, int first_line,
-                          const mt_parse_options *opt, mt_statement_fn fn, void *ctx,
-                          mt_error *err)
+mt_status mt__parse_bytes(const char *text, size_t len, const char *name, const char *dir,
+                          int first_line, const mt_parse_options *opt, mt_statement_fn fn,
+                          void *ctx, mt_error *err)
 {
     parser P;
     mt_error local;
@@ -581,8 +582,15 @@ mt_status mt_parse_string(const char *text, const char *name, const char *dir, i
     mt_error_clear(err);
     if (!text) return mt_error_set(err, MT_ERR_INVALID, "no text");
     init_parser(&P, opt, fn, ctx);
-    return parse_source(&P, text, strlen(text), name ? name : "<string>", dir, first_line, 0,
-                        NULL, err);
+    return parse_source(&P, text, len, name ? name : "<string>", dir, first_line, 0, NULL, err);
+}
+
+mt_status mt_parse_string(const char *text, const char *name, const char *dir, int first_line,
+                          const mt_parse_options *opt, mt_statement_fn fn, void *ctx,
+                          mt_error *err)
+{
+    return mt__parse_bytes(text, text ? strlen(text) : 0, name, dir, first_line, opt, fn, ctx,
+                           err);
 }
 
 int mt_parse_incomplete(const char *text)
