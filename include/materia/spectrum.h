@@ -14,8 +14,9 @@
 #include "materia/rgb.h"
 
 /* pbrt-v2 RGBSpectrum::FromSampled: lambda in nm, in any order (pbrt-v2
- * sorts the (lambda, value) pairs); finite values. Black when n <= 0. A
- * repeated wavelength makes a step, as in pbrt-v2. */
+ * sorts the (lambda, value) pairs). Black when n <= 0 or when a number is
+ * not finite or beyond float's range. A repeated wavelength makes a step, as
+ * in pbrt-v2. */
 MT_API mt_rgb mt_spectrum_from_sampled(const double *lambda, const double *values, int n);
 MT_API mt_rgb mt_xyz_to_rgb(const double xyz[3]);
 MT_API void mt_rgb_to_xyz(mt_rgb rgb, double xyz[3]);

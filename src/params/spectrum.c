@@ -10,6 +10,7 @@
 #include <math.h>
 #include "materia/spectrum.h"
 #include "params/cie.h"
+#include "params/numcheck.h"
 #include "params/spectrum_internal.h"
 
 mt_rgb mt_xyz_to_rgb(const double xyz[3])
@@ -72,6 +73,8 @@ mt_rgb mt_spectrum_from_sampled(const double *lambda, const double *values, int 
     double xyz[3];
     int i, first = 0, last = 0;
     if (!lambda || !values || n <= 0) return mt_rgb_black();
+    for (i = 0; i < n; ++i) /* outside float's range the input is not a spectrum */
+        if (!mt__fits_real(lambda[i]) || !mt__fits_real(values[i])) return mt_rgb_black();
     for (i = 1; i < n; ++i) {
         mt_real li = (mt_real)lambda[i], vi = (mt_real)values[i];
         if (pair_less(li, vi, (mt_real)lambda[first], (mt_real)values[first])) first = i;
@@ -116,12 +119,19 @@ mt_status mt__blackbody_rgb(double kelvin, double scale, mt_rgb *out)
     if (!isfinite(kelvin) || !isfinite(scale)) return MT_ERR_INVALID;
     if (kelvin <= 0) return MT_OK; /* pbrt-v2: a zero spectrum */
     for (i = 0; i < MT_CIE_SAMPLES; ++i) {
+        double d;
         lambda[i] = MT_CIE_LAMBDA_MIN + i;
-        v[i] = (mt_real)planck_ratio(lambda[i], kelvin);
+        d = planck_ratio(lambda[i], kelvin);
+        /* a sample beyond float is infinite in pbrt-v2 (and its conversion
+         * undefined in C): an error in both builds */
+        if (!mt__fits_real(d)) return MT_ERR_INVALID;
+        v[i] = (mt_real)d;
     }
     /* pbrt-v2 ParamSet::AddBlackbodySpectrum: scale * FromSampled(...) */
     rgb = mt_rgb_scale(mt_spectrum_from_sampled(lambda, v, MT_CIE_SAMPLES), (mt_real)scale);
-    if (!mt_rgb_is_finite(rgb)) return MT_ERR_INVALID;
+    /* beyond float, pbrt-v2's values are infinite: an error in both builds */
+    for (i = 0; i < 3; ++i)
+        if (!mt__fits_real(rgb.c[i])) return MT_ERR_INVALID;
     *out = rgb;
     return MT_OK;
 }
