@@ -119,12 +119,11 @@ static void check_rgb(mt_rgb got, const double want[3], double rel, const char *
 
 static void test_tables(void)
 {
-    double sx = 0, sy = 0, sz = 0;
+    double sx = 0, sz = 0;
     volatile float fy = 0;
     int i, peak = 0;
     for (i = 0; i < MT_CIE_SAMPLES; ++i) {
         sx += mt__cie_x[i];
-        sy += mt__cie_y[i];
         sz += mt__cie_z[i];
         fy += mt__cie_y[i];
         if (mt__cie_y[i] > mt__cie_y[peak]) peak = i;

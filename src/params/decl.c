@@ -11,13 +11,13 @@
 #include <ctype.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include "core/alloc.h"
 #include "materia/spectrum.h"
 #include "params/decl.h"
 #include "params/path.h"
+#include "params/report.h"
 #include "params/spectrum_internal.h"
 
 /* pbrt-v2's type words, and what each is stored as. */
@@ -71,44 +71,30 @@ void mt__decl_name(const char *decl, char *out, size_t size)
     if (split(decl, &d) && strlen(d.name) < size) memcpy(out, d.name, strlen(d.name) + 1);
 }
 
-/* An error about the parameter called name, located at its declaration. */
-static mt_status decl_error(mt_error *err, mt_status st, const mt__decl_site *site,
-                            const char *name, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 5, 6)))
-#endif
-    ;
-static mt_status decl_error(mt_error *err, mt_status st, const mt__decl_site *site,
-                            const char *name, const char *fmt, ...)
+/* name as the parameter an error concerns; returns st. */
+static mt_status with_param(mt_error *err, const char *name, mt_status st)
 {
-    char msg[sizeof err->message];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    mt_error_param(err, st, name, "%s", msg);
-    mt_error_locate(err, site->file, site->line, site->column);
+    if (err) snprintf(err->param, sizeof err->param, "%.*s", (int)sizeof err->param - 1, name ? name : "");
     return st;
 }
+
+/* An error about the parameter called name, located at its declaration. */
+#define decl_error(err, st, site, name, ...)                                                    \
+    with_param(err, name,                                                                       \
+               mt__fail_at(err, st, (site)->file, (site)->line, (site)->column, __VA_ARGS__))
 
 static mt_status unknown_type(const char *decl, const split_decl *d, const mt__decl_site *site,
                               mt_error *err)
 {
-    char msg[sizeof err->message];
-    if (!d->type[0]) {
-        snprintf(msg, sizeof msg,
-                 "parameter declaration \"%.200s\" is not of the form \"type name\"", decl);
-        mt_error_set(err, MT_ERR_PARSE, "%s", msg);
-    } else {
-        snprintf(msg, sizeof msg,
-                 "unknown parameter type \"%.40s\" in \"%.200s\" (pbrt-v2's types: float, "
-                 "integer, bool, string, point, vector, normal, rgb, color, xyz, spectrum, "
-                 "blackbody, texture)",
-                 d->type, decl);
-        mt_error_param(err, MT_ERR_PARSE, d->name, "%s", msg);
-    }
-    mt_error_locate(err, site->file, site->line, site->column);
-    return MT_ERR_PARSE;
+    if (!d->type[0])
+        return decl_error(err, MT_ERR_PARSE, site, "",
+                          "parameter declaration \"%.200s\" is not of the form \"type name\"",
+                          decl);
+    return decl_error(err, MT_ERR_PARSE, site, d->name,
+                      "unknown parameter type \"%.40s\" in \"%.200s\" (pbrt-v2's types: float, "
+                      "integer, bool, string, point, vector, normal, rgb, color, xyz, spectrum, "
+                      "blackbody, texture)",
+                      d->type, decl);
 }
 
 /* Integers: pbrt-v2 reads every number as a float and truncates it; a value

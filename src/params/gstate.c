@@ -1,6 +1,7 @@
 /* pbrt-v2's GraphicsState: its record, copies for AttributeBegin, release. */
 #include <string.h>
 #include "core/alloc.h"
+#include "params/report.h"
 #include "params/gstate.h"
 
 mt__shared_params *mt__shared_params_new(const mt_paramset *ps)
@@ -106,6 +107,7 @@ mt__named_material *mt__gstate_find_named(const mt__gstate *g, const char *name)
 
 int mt__gstate_bind_named(mt__gstate *g, mt__named_material *m, int *replaced)
 {
+    mt__named_material **named;
     int i;
     *replaced = 0;
     for (i = 0; i < g->nnamed; ++i)
@@ -115,16 +117,12 @@ int mt__gstate_bind_named(mt__gstate *g, mt__named_material *m, int *replaced)
             *replaced = 1;
             return 1;
         }
-    if (g->nnamed == g->cap_named) {
-        int ncap = g->cap_named ? g->cap_named * 2 : 8;
-        mt__named_material **nn = mt__realloc(g->named, (size_t)ncap * sizeof *nn);
-        if (!nn) {
-            mt__named_material_release(m);
-            return 0;
-        }
-        g->named = nn;
-        g->cap_named = ncap;
+    named = mt__grow(g->named, &g->cap_named, g->nnamed + 1, sizeof *named);
+    if (!named) {
+        mt__named_material_release(m);
+        return 0;
     }
+    g->named = named;
     g->named[g->nnamed++] = m;
     return 1;
 }

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "core/alloc.h"
+#include "params/report.h"
 #include "materia/params.h"
 #include "params/numcheck.h"
 #include "params/path.h"
@@ -165,15 +166,10 @@ void mt_paramset_destroy(mt_paramset *ps)
 static int reserve(mt_paramset *ps, int n)
 {
     entry *ne;
-    int ncap;
     if (n <= ps->cap) return 1;
-    ncap = ps->cap ? ps->cap * 2 : 8;
-    if (ncap < n) ncap = n;
-    ne = mt__realloc(ps->e, (size_t)ncap * sizeof *ne);
-    if (!ne) return 0;
-    ps->e = ne;
-    ps->cap = ncap;
-    return 1;
+    ne = mt__grow(ps->e, &ps->cap, n, sizeof *ne);
+    if (ne) ps->e = ne;
+    return ne != NULL;
 }
 
 mt_paramset *mt_paramset_clone(const mt_paramset *ps)

@@ -21,6 +21,7 @@
 #include "params/numcheck.h"
 #include "params/parser_internal.h"
 #include "params/path.h"
+#include "params/report.h"
 #include "params/tokenizer.h"
 
 /* Positional arguments: s a quoted string, n a number, a a [ list ] of 16
@@ -88,7 +89,8 @@ typedef struct include_link {
 } include_link;
 
 typedef struct parser {
-    const mt_parse_options *opt;
+    mt_warning_fn warn;
+    void *warn_ctx;
     int max_depth;
     mt_statement_fn fn;
     void *ctx;
@@ -120,25 +122,6 @@ typedef struct source {
 static mt_status parse_file_at(parser *P, const char *path, int depth, const include_link *chain,
                                mt_error *err);
 
-static mt_status src_error(source *S, mt_error *err, mt_status st, int line, int column,
-                           const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 6, 7)))
-#endif
-    ;
-static mt_status src_error(source *S, mt_error *err, mt_status st, int line, int column,
-                           const char *fmt, ...)
-{
-    va_list ap;
-    mt_error_clear(err);
-    err->status = st;
-    va_start(ap, fmt);
-    vsnprintf(err->message, sizeof err->message, fmt, ap);
-    va_end(ap);
-    mt_error_locate(err, S->name, line, column);
-    return st;
-}
-
 static mt_status next(source *S, mt_error *err) { return mt__lex(&S->lx, &S->tok, err); }
 
 /* The current token, described for a message. */
@@ -167,7 +150,7 @@ static const char *describe(const mt__token *t, char *buf, size_t size)
 static mt_status expected(source *S, mt_error *err, const char *what)
 {
     char buf[160];
-    return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column, "%s: expected %s, found %s",
+    return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column, "%s: expected %s, found %s",
                      S->d ? S->d->name : "statement", what, describe(&S->tok, buf, sizeof buf));
 }
 
@@ -202,12 +185,12 @@ static mt_status read_numbers_list(source *S, mt_error *err)
     }
     if (st != MT_OK) return st;
     if (S->tok.kind == MT_TOK_EOF)
-        return src_error(S, err, MT_ERR_PARSE, line, column,
+        return mt__fail_at(err, MT_ERR_PARSE, S->name, line, column,
                          "%s: unterminated [ list: expected ']' before the end of the input",
                          S->d->name);
     if (S->tok.kind != MT_TOK_RBRACK) return expected(S, err, "a number or ']'");
     if (n != MAX_ARGS)
-        return src_error(S, err, MT_ERR_PARSE, line, column,
+        return mt__fail_at(err, MT_ERR_PARSE, S->name, line, column,
                          "%s: expected a [ list ] of 16 numbers, found %d number%s", S->d->name,
                          n, n == 1 ? "" : "s");
     S->nargs = MAX_ARGS;
@@ -240,7 +223,7 @@ static mt_status read_args(source *S, mt_error *err)
             if (S->tok.kind != MT_TOK_STRING) return expected(S, err, args_text(S->d));
             S->strs[S->nstrs] = mt__strdup(S->tok.text);
             if (!S->strs[S->nstrs])
-                return src_error(S, err, MT_ERR_NOMEM, S->tok.line, S->tok.column, "out of memory");
+                return mt__fail_at(err, MT_ERR_NOMEM, S->name, S->tok.line, S->tok.column, "out of memory");
             arg->is_string = 1;
             arg->string = S->strs[S->nstrs++];
         }
@@ -253,30 +236,22 @@ static mt_status read_args(source *S, mt_error *err)
 
 static int push_num(source *S, double v)
 {
-    if (S->nnums == S->cap_nums) {
-        int ncap = S->cap_nums ? S->cap_nums * 2 : 64;
-        double *nn;
-        if (ncap > MT__MAX_VALUES) return 0;
-        nn = mt__realloc(S->nums, (size_t)ncap * sizeof *nn);
-        if (!nn) return 0;
-        S->nums = nn;
-        S->cap_nums = ncap;
-    }
+    double *nums = S->nnums < MT__MAX_VALUES
+                       ? mt__grow(S->nums, &S->cap_nums, S->nnums + 1, sizeof *nums)
+                       : NULL;
+    if (!nums) return 0;
+    S->nums = nums;
     S->nums[S->nnums++] = v;
     return 1;
 }
 
 static int push_val(source *S, const char *s)
 {
-    if (S->nvals == S->cap_vals) {
-        int ncap = S->cap_vals ? S->cap_vals * 2 : 8;
-        char **nv;
-        if (ncap > MT__MAX_VALUES) return 0;
-        nv = mt__realloc(S->vals, (size_t)ncap * sizeof *nv);
-        if (!nv) return 0;
-        S->vals = nv;
-        S->cap_vals = ncap;
-    }
+    char **vals = S->nvals < MT__MAX_VALUES
+                      ? mt__grow(S->vals, &S->cap_vals, S->nvals + 1, sizeof *vals)
+                      : NULL;
+    if (!vals) return 0;
+    S->vals = vals;
     if (!(S->vals[S->nvals] = mt__strdup(s))) return 0;
     S->nvals++;
     return 1;
@@ -294,14 +269,14 @@ static mt_status push_value(source *S, const char *decl, mt_error *err)
 {
     int ok;
     if (S->tok.kind == MT_TOK_NUMBER && S->nvals)
-        return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+        return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                          "\"%.80s\": a number in a list of strings", decl);
     if (S->tok.kind == MT_TOK_STRING && S->nnums)
-        return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+        return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                          "\"%.80s\": a string in a list of numbers", decl);
     ok = S->tok.kind == MT_TOK_NUMBER ? push_num(S, S->tok.number) : push_val(S, S->tok.text);
     if (!ok)
-        return src_error(S, err, MT_ERR_NOMEM, S->tok.line, S->tok.column,
+        return mt__fail_at(err, MT_ERR_NOMEM, S->name, S->tok.line, S->tok.column,
                          "\"%.80s\": out of memory (or more than %d values)", decl, MT__MAX_VALUES);
     return next(S, err);
 }
@@ -317,35 +292,19 @@ static mt_status read_list(source *S, const char *decl, mt_error *err)
         case MT_TOK_STRING: st = push_value(S, decl, err); break;
         case MT_TOK_RBRACK: return next(S, err);
         case MT_TOK_EOF:
-            return src_error(S, err, MT_ERR_PARSE, line, column,
+            return mt__fail_at(err, MT_ERR_PARSE, S->name, line, column,
                              "\"%.80s\": unterminated [ list: expected ']' before the end of the "
                              "input", decl);
         case MT_TOK_LBRACK:
-            return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+            return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                              "\"%.80s\": '[' inside a [ list ] (lists do not nest)", decl);
         default:
-            return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+            return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                              "\"%.80s\": expected a number, a quoted string or ']', found %s",
                              decl, describe(&S->tok, buf, sizeof buf));
         }
     }
     return st;
-}
-
-static void warn(source *S, int line, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-static void warn(source *S, int line, const char *fmt, ...)
-{
-    char msg[512];
-    va_list ap;
-    if (!S->P->opt || !S->P->opt->warn) return;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    S->P->opt->warn(S->P->opt->warn_ctx, S->name, line, msg);
 }
 
 /* "type name" value: the current token is the declaration string. */
@@ -359,7 +318,7 @@ static mt_status read_param(source *S, mt_error *err)
     site.line = S->tok.line;
     site.column = S->tok.column;
     site.dir = S->dir;
-    if (!decl) return src_error(S, err, MT_ERR_NOMEM, site.line, site.column, "out of memory");
+    if (!decl) return mt__fail_at(err, MT_ERR_NOMEM, S->name, site.line, site.column, "out of memory");
     clear_values(S);
     st = next(S, err);
     if (st == MT_OK) {
@@ -368,14 +327,14 @@ static mt_status read_param(source *S, mt_error *err)
         else if (S->tok.kind == MT_TOK_NUMBER || S->tok.kind == MT_TOK_STRING)
             st = push_value(S, decl, err);
         else
-            st = src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+            st = mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                            "\"%.80s\": expected a value (a number, a quoted string or a [ list ]), "
                            "found %s", decl, describe(&S->tok, buf, sizeof buf));
     }
     if (st == MT_OK) {
         mt__decl_name(decl, name, sizeof name);
         if (name[0] && mt_paramset_find(S->params, name))
-            warn(S, site.line, "Parameter \"%s\" given twice in one %s statement; the last one is used",
+            mt__warnf(S->P->warn, S->P->warn_ctx, S->name, site.line, "Parameter \"%s\" given twice in one %s statement; the last one is used",
                  name, S->d->name);
         v.nums = S->nums;
         v.nnums = S->nnums;
@@ -415,18 +374,18 @@ static mt_status do_include(source *S, const char *file, mt_error *err)
     mt_error why;
     mt_error_clear(&why);
     if (mt__path_join(S->dir, file, path, sizeof path, &why) != MT_OK)
-        return src_error(S, err, MT_ERR_LIMIT, S->line, S->column, "Include: %s", why.message);
+        return mt__fail_at(err, MT_ERR_LIMIT, S->name, S->line, S->column, "Include: %s", why.message);
     if (S->depth + 1 > S->P->max_depth)
-        return src_error(S, err, MT_ERR_LIMIT, S->line, S->column,
+        return mt__fail_at(err, MT_ERR_LIMIT, S->name, S->line, S->column,
                          "Include \"%.200s\": more than %d levels of nested Include", file,
                          S->P->max_depth);
     if ((problem = file_problem(path, &sb)) != NULL)
-        return src_error(S, err, MT_ERR_IO, S->line, S->column,
+        return mt__fail_at(err, MT_ERR_IO, S->name, S->line, S->column,
                          "Include: cannot open \"%.200s\" (looked for \"%.200s\"): %s", file,
                          path, problem);
     for (l = S->chain; l; l = l->up)
         if (l->dev == sb.st_dev && l->ino == sb.st_ino)
-            return src_error(S, err, MT_ERR_PARSE, S->line, S->column,
+            return mt__fail_at(err, MT_ERR_PARSE, S->name, S->line, S->column,
                              "Include \"%.200s\": the file includes itself (an Include cycle)",
                              file);
     self.dev = sb.st_dev;
@@ -465,29 +424,29 @@ static mt_status statement(source *S, mt_error *err)
     if (S->tok.kind != MT_TOK_WORD || !(S->d = find_directive(S->tok.text))) {
         const directive *near = S->tok.kind == MT_TOK_WORD ? find_directive_nocase(S->tok.text) : NULL;
         if (near)
-            return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+            return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                              "unknown directive \"%.60s\" (directives are case-sensitive: %s?)",
                              S->tok.text, near->name);
         if (S->tok.kind == MT_TOK_WORD && !mt__is_nonfinite_word(S->tok.text))
-            return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+            return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                              "unknown directive \"%.60s\"", S->tok.text);
-        return src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+        return mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                          "expected a directive, found %s", describe(&S->tok, buf, sizeof buf));
     }
     S->line = S->tok.line;
     S->column = S->tok.column;
     S->params = mt_paramset_create();
-    if (!S->params) return src_error(S, err, MT_ERR_NOMEM, S->line, S->column, "out of memory");
+    if (!S->params) return mt__fail_at(err, MT_ERR_NOMEM, S->name, S->line, S->column, "out of memory");
     st = next(S, err);
     if (st == MT_OK) st = read_args(S, err);
     while (st == MT_OK && S->d->has_params && S->tok.kind == MT_TOK_STRING) st = read_param(S, err);
     if (st == MT_OK && !S->d->has_params && S->tok.kind == MT_TOK_STRING)
-        st = src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+        st = mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                        "%s takes %s and no parameter list: found %s", S->d->name,
                        S->d->args[0] ? args_text(S->d) : "no arguments",
                        describe(&S->tok, buf, sizeof buf));
     if (st == MT_OK && S->tok.kind != MT_TOK_WORD && S->tok.kind != MT_TOK_EOF)
-        st = src_error(S, err, MT_ERR_PARSE, S->tok.line, S->tok.column,
+        st = mt__fail_at(err, MT_ERR_PARSE, S->name, S->tok.line, S->tok.column,
                        "%s: expected %sa directive, found %s", S->d->name,
                        S->d->has_params ? "a \"type name\" parameter or " : "",
                        describe(&S->tok, buf, sizeof buf));
@@ -543,7 +502,8 @@ static mt_status parse_file_at(parser *P, const char *path, int depth, const inc
 
 static void init_parser(parser *P, const mt_parse_options *opt, mt_statement_fn fn, void *ctx)
 {
-    P->opt = opt;
+    P->warn = opt ? opt->warn : NULL;
+    P->warn_ctx = opt ? opt->warn_ctx : NULL;
     P->fn = fn;
     P->ctx = ctx;
     P->max_depth = opt && opt->max_include_depth > 0 ? opt->max_include_depth : 32;

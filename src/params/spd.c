@@ -10,28 +10,23 @@
 #include <stdlib.h>
 #include <string.h>
 #include "core/alloc.h"
+#include "params/report.h"
 #include "materia/spectrum.h"
 #include "params/path.h"
 
 typedef struct spd_list {
     double *lambda, *values;
-    int n, cap;
+    int n, cap_lambda, cap_values;
 } spd_list;
 
 static int spd_push(spd_list *l, double lambda, double v)
 {
-    if (l->n == l->cap) {
-        int ncap = l->cap ? l->cap * 2 : 64;
-        double *a, *b;
-        if (ncap > (1 << 26)) return 0;
-        a = mt__realloc(l->lambda, (size_t)ncap * sizeof *a);
-        if (!a) return 0;
-        l->lambda = a;
-        b = mt__realloc(l->values, (size_t)ncap * sizeof *b);
-        if (!b) return 0;
-        l->values = b;
-        l->cap = ncap;
-    }
+    double *a = mt__grow(l->lambda, &l->cap_lambda, l->n + 1, sizeof *a), *b;
+    if (!a) return 0;
+    l->lambda = a;
+    b = mt__grow(l->values, &l->cap_values, l->n + 1, sizeof *b);
+    if (!b) return 0;
+    l->values = b;
     l->lambda[l->n] = lambda;
     l->values[l->n] = v;
     l->n++;
@@ -108,7 +103,7 @@ static mt_status spd_parse(const char *path, const char *text, size_t len, spd_l
 
 mt_status mt_spd_read(const char *path, double **lambda, double **values, int *n, mt_error *err)
 {
-    spd_list l = {NULL, NULL, 0, 0};
+    spd_list l = {NULL, NULL, 0, 0, 0};
     char *text;
     size_t len;
     mt_status st;

@@ -34,31 +34,6 @@ struct mt__coordsys {
     mt_transform t[2];
 };
 
-mt_status mt__state_fail(const mt_statement *st, mt_error *err, mt_status status,
-                         const char *fmt, ...)
-{
-    va_list ap;
-    if (!err) return status;
-    mt_error_clear(err);
-    err->status = status;
-    va_start(ap, fmt);
-    vsnprintf(err->message, sizeof err->message, fmt, ap);
-    va_end(ap);
-    mt_error_locate(err, st->file, st->line, st->column);
-    return status;
-}
-
-void mt__state_warn(mt_state *s, const mt_statement *st, const char *fmt, ...)
-{
-    char msg[512];
-    va_list ap;
-    if (!s->warn) return;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    s->warn(s->warn_ctx, st->file, st->line, msg);
-}
-
 static void reset_transforms(mt_state *s)
 {
     s->t[0] = s->t[1] = mt_transform_identity();
@@ -242,13 +217,9 @@ static mt_status define_coordsys(mt_state *s, const mt_statement *st, const char
 {
     struct mt__coordsys *c = find_coordsys(s, name);
     if (!c) {
-        if (s->ncs == s->cap_cs) {
-            int ncap = s->cap_cs ? 2 * s->cap_cs : 4;
-            struct mt__coordsys *ncs = mt__realloc(s->cs, (size_t)ncap * sizeof *ncs);
-            if (!ncs) return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
-            s->cs = ncs;
-            s->cap_cs = ncap;
-        }
+        struct mt__coordsys *cs = mt__grow(s->cs, &s->cap_cs, s->ncs + 1, sizeof *cs);
+        if (!cs) return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
+        s->cs = cs;
         c = &s->cs[s->ncs];
         c->name = mt__strdup(name);
         if (!c->name) return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
@@ -280,14 +251,9 @@ static mt_status do_coordsys(mt_state *s, const mt_statement *st, mt_error *err)
 
 static mt_status push(mt_state *s, const mt_statement *st, frame_kind kind, mt_error *err)
 {
-    struct mt__frame *f;
-    if (s->depth == s->cap) {
-        int ncap = s->cap ? 2 * s->cap : 16;
-        struct mt__frame *ns = mt__realloc(s->stack, (size_t)ncap * sizeof *ns);
-        if (!ns) return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
-        s->stack = ns;
-        s->cap = ncap;
-    }
+    struct mt__frame *f = mt__grow(s->stack, &s->cap, s->depth + 1, sizeof *f);
+    if (!f) return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
+    s->stack = f;
     f = &s->stack[s->depth];
     memset(f, 0, sizeof *f);
     f->kind = kind;

@@ -3,10 +3,9 @@
 #ifndef MT_PARAMS_STATE_INTERNAL_H
 #define MT_PARAMS_STATE_INTERNAL_H
 
-#include <stdarg.h>
-#include <stdio.h>
 #include "materia/state.h"
 #include "params/gstate.h"
+#include "params/report.h"
 
 struct mt__frame;
 struct mt__coordsys;
@@ -24,18 +23,10 @@ struct mt_state {
     int ncs, cap_cs;
 };
 
-/* Fills err with the message, located at the statement; returns status. */
-mt_status mt__state_fail(const mt_statement *st, mt_error *err, mt_status status,
-                         const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-void mt__state_warn(mt_state *s, const mt_statement *st, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
+/* An error located at the statement; a warning about it. */
+#define mt__state_fail(st, err, status, ...)                                                    \
+    mt__fail_at(err, status, (st)->file, (st)->line, (st)->column, __VA_ARGS__)
+#define mt__state_warn(s, st, ...) mt__warnf((s)->warn, (s)->warn_ctx, (st)->file, (st)->line, __VA_ARGS__)
 
 mt_status mt__state_texture(mt_state *s, const mt_statement *st, mt_error *err);
 mt_status mt__state_material(mt_state *s, const mt_statement *st, mt_error *err);

@@ -69,19 +69,27 @@ mt_status mt__state_texture(mt_state *s, const mt_statement *st, mt_error *err)
     return MT_OK;
 }
 
+/* *name = the statement's first argument, *params = its parameters. */
+static mt_status record(const mt_statement *st, char **name, mt__shared_params **params,
+                        mt_error *err)
+{
+    mt__shared_params *sp = mt__shared_params_new(st->params);
+    if (!sp || !mt__replace_string(name, st->args[0].string)) {
+        mt__shared_params_release(sp);
+        return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
+    }
+    mt__shared_params_release(*params);
+    *params = sp;
+    return MT_OK;
+}
+
 /* pbrt-v2 pbrtMaterial: material = name; materialParams = params;
  * currentNamedMaterial = "". */
 mt_status mt__state_material(mt_state *s, const mt_statement *st, mt_error *err)
 {
-    mt__shared_params *sp = mt__shared_params_new(st->params);
-    if (!sp || !mt__replace_string(&s->g.material, st->args[0].string)) {
-        mt__shared_params_release(sp);
-        return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
-    }
-    mt__shared_params_release(s->g.material_params);
-    s->g.material_params = sp;
-    mt__replace_string(&s->g.current_named, NULL);
-    return MT_OK;
+    mt_status rc = record(st, &s->g.material, &s->g.material_params, err);
+    if (rc == MT_OK) mt__replace_string(&s->g.current_named, NULL);
+    return rc;
 }
 
 /* pbrt-v2 pbrtMakeNamedMaterial: TextureParams(params, materialParams,
@@ -135,14 +143,7 @@ mt_status mt__state_named(mt_state *s, const mt_statement *st, mt_error *err)
 /* pbrt-v2 pbrtAreaLightSource: areaLight = name; areaLightParams = params. */
 mt_status mt__state_area_light(mt_state *s, const mt_statement *st, mt_error *err)
 {
-    mt__shared_params *sp = mt__shared_params_new(st->params);
-    if (!sp || !mt__replace_string(&s->g.area_light, st->args[0].string)) {
-        mt__shared_params_release(sp);
-        return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
-    }
-    mt__shared_params_release(s->g.area_params);
-    s->g.area_params = sp;
-    return MT_OK;
+    return record(st, &s->g.area_light, &s->g.area_params, err);
 }
 
 static void spec_of(const mt__named_material *m, mt_material_spec *out)

@@ -14,12 +14,11 @@
  * is never accepted; and an unterminated string stops the parse.
  */
 #include <errno.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "core/alloc.h"
 #include "params/numcheck.h"
+#include "params/report.h"
 #include "params/tokenizer.h"
 
 void mt__lexer_init(mt__lexer *lx, const char *src, size_t len, const char *name,
@@ -40,26 +39,6 @@ void mt__lexer_free(mt__lexer *lx)
     mt__free(lx->buf);
     lx->buf = NULL;
     lx->buf_len = lx->buf_cap = 0;
-}
-
-static mt_status lex_error(mt__lexer *lx, mt_error *err, mt_status st, int line, int column,
-                           const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 6, 7)))
-#endif
-    ;
-static mt_status lex_error(mt__lexer *lx, mt_error *err, mt_status st, int line, int column,
-                           const char *fmt, ...)
-{
-    va_list ap;
-    if (!err) return st;
-    mt_error_clear(err);
-    err->status = st;
-    va_start(ap, fmt);
-    vsnprintf(err->message, sizeof err->message, fmt, ap);
-    va_end(ap);
-    mt_error_locate(err, lx->name, line, column);
-    return st;
 }
 
 static int buf_put(mt__lexer *lx, char c)
@@ -136,10 +115,10 @@ static mt_status lex_word(mt__lexer *lx, mt__token *tok, mt_error *err)
     char *end;
     while (lx->pos < lx->len && is_word_char(lx->src[lx->pos])) {
         if (lx->buf_len >= MT__MAX_WORD)
-            return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                              "token longer than %d characters", MT__MAX_WORD);
         if (!buf_put(lx, lx->src[lx->pos]))
-            return lex_error(lx, err, MT_ERR_NOMEM, tok->line, tok->column, "out of memory");
+            return mt__fail_at(err, MT_ERR_NOMEM, lx->name, tok->line, tok->column, "out of memory");
         advance(lx);
     }
     w = lx->buf;
@@ -151,19 +130,19 @@ static mt_status lex_word(mt__lexer *lx, mt__token *tok, mt_error *err)
     }
     if (!is_number(w, lx->buf_len)) {
         if (mt__is_nonfinite_word(w))
-            return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                              "\"%s\" is not a number: pbrt-v2's syntax has no NaN or infinity",
                              w);
-        return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+        return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                          "malformed number \"%.60s\"", w);
     }
     errno = 0;
     tok->number = strtod(w, &end);
     if (end != w + lx->buf_len)
-        return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+        return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                          "cannot convert \"%.60s\" (is the C locale's decimal point '.'?)", w);
     if (!mt__fits_real(tok->number))
-        return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+        return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                          "number %.60s is out of range: it overflows to infinity as a float", w);
     tok->kind = MT_TOK_NUMBER;
     return MT_OK;
@@ -179,7 +158,7 @@ static mt_status lex_escape(mt__lexer *lx, mt__token *tok, mt_error *err, int *s
     *skip = 0;
     if (left < 2) {
         lx->eof_in_string = 1;
-        return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+        return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                          "unterminated string: the input ends inside it");
     }
     advance(lx);
@@ -203,14 +182,14 @@ static mt_status lex_escape(mt__lexer *lx, mt__token *tok, mt_error *err, int *s
         c = '\r';
         break;
     case '\0':
-        return lex_error(lx, err, MT_ERR_PARSE, line, column, "NUL byte inside a string");
+        return mt__fail_at(err, MT_ERR_PARSE, lx->name, line, column, "NUL byte inside a string");
     default:
         if (left >= 4 && is_digit(s[1]) && is_digit(s[2]) && is_digit(s[3])) {
             /* pbrt-v2: atoi of the three digits, less 256 while above 256 */
             int v = (s[1] - '0') * 100 + (s[2] - '0') * 10 + (s[3] - '0');
             while (v > 256) v -= 256;
             if (v == 0 || v == 256)
-                return lex_error(lx, err, MT_ERR_PARSE, line, column,
+                return mt__fail_at(err, MT_ERR_PARSE, lx->name, line, column,
                                  "escape \\%.3s makes a NUL byte inside a string", s + 1);
             advance(lx);
             advance(lx);
@@ -221,24 +200,24 @@ static mt_status lex_escape(mt__lexer *lx, mt__token *tok, mt_error *err, int *s
         break;
     }
     advance(lx);
-    if (!buf_put(lx, c)) return lex_error(lx, err, MT_ERR_NOMEM, line, column, "out of memory");
+    if (!buf_put(lx, c)) return mt__fail_at(err, MT_ERR_NOMEM, lx->name, line, column, "out of memory");
     return MT_OK;
 }
 
 static mt_status lex_string(mt__lexer *lx, mt__token *tok, mt_error *err)
 {
     advance(lx); /* the opening quote */
-    if (!buf_put(lx, '\0')) return lex_error(lx, err, MT_ERR_NOMEM, tok->line, tok->column, "out of memory");
+    if (!buf_put(lx, '\0')) return mt__fail_at(err, MT_ERR_NOMEM, lx->name, tok->line, tok->column, "out of memory");
     lx->buf_len = 0;
     for (;;) {
         char c;
         if (lx->pos >= lx->len) {
             lx->eof_in_string = 1;
-            return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                              "unterminated string: the input ends inside it");
         }
         if (lx->buf_len >= MT__MAX_STRING)
-            return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                              "string longer than %d bytes", MT__MAX_STRING);
         c = lx->src[lx->pos];
         if (c == '"') {
@@ -246,11 +225,11 @@ static mt_status lex_string(mt__lexer *lx, mt__token *tok, mt_error *err)
             break;
         }
         if (c == '\n')
-            return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                              "unterminated string: a string cannot continue past the end of "
                              "its line (write \\n, or end the line with a backslash)");
         if (c == '\0')
-            return lex_error(lx, err, MT_ERR_PARSE, lx->line, lx->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, lx->line, lx->column,
                              "NUL byte inside a string");
         if (c == '\\') {
             int skip;
@@ -259,7 +238,7 @@ static mt_status lex_string(mt__lexer *lx, mt__token *tok, mt_error *err)
             continue;
         }
         if (!buf_put(lx, c))
-            return lex_error(lx, err, MT_ERR_NOMEM, tok->line, tok->column, "out of memory");
+            return mt__fail_at(err, MT_ERR_NOMEM, lx->name, tok->line, tok->column, "out of memory");
         advance(lx);
     }
     tok->kind = MT_TOK_STRING;
@@ -294,34 +273,25 @@ mt_status mt__lex(mt__lexer *lx, mt__token *tok, mt_error *err)
     }
     tok->line = lx->line;
     tok->column = lx->column;
-    switch (lx->src[lx->pos]) {
-    case '[':
+    if (lx->src[lx->pos] == '[' || lx->src[lx->pos] == ']') {
+        int open = lx->src[lx->pos] == '[';
         advance(lx);
-        tok->kind = MT_TOK_LBRACK;
-        tok->text = "[";
+        tok->kind = open ? MT_TOK_LBRACK : MT_TOK_RBRACK;
+        tok->text = open ? "[" : "]";
         tok->len = 1;
         return MT_OK;
-    case ']':
-        advance(lx);
-        tok->kind = MT_TOK_RBRACK;
-        tok->text = "]";
-        tok->len = 1;
-        return MT_OK;
-    case '"':
-        return lex_string(lx, tok, err);
-    default:
-        break;
     }
+    if (lx->src[lx->pos] == '"') return lex_string(lx, tok, err);
     if (is_word_char(lx->src[lx->pos])) return lex_word(lx, tok, err);
     {
         unsigned char c = (unsigned char)lx->src[lx->pos];
         if (c == 0)
-            return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                              "unexpected NUL byte (binary data in a scene file?)");
         if (c >= 0x21 && c < 0x7f)
-            return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+            return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                              "unexpected character '%c' (0x%02x)", c, c);
-        return lex_error(lx, err, MT_ERR_PARSE, tok->line, tok->column,
+        return mt__fail_at(err, MT_ERR_PARSE, lx->name, tok->line, tok->column,
                          "unexpected byte 0x%02x outside a string", c);
     }
 }
