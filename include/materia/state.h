@@ -23,6 +23,11 @@
  * Transform) are errors naming the statement's file and line. The state does
  * not enforce pbrt-v2's options/world blocks, so that the query tool can send
  * statements without WorldBegin.
+ *
+ * Texture creates the texture at once (mt_texture_create) and reports its
+ * unused parameters through the warning callback; Material and
+ * MakeNamedMaterial only record (mt_state_material, mt_state_named_material):
+ * their parameters are checked when the material is made.
  */
 #ifndef MATERIA_STATE_H
 #define MATERIA_STATE_H
