@@ -252,12 +252,11 @@ static mt_status fail(const mt_param *p, mt_status st, mt_error *err)
 }
 
 /*
- * The parameter called name, checked to be of type want (a second accepted
- * type in want2, or want itself); with one element when single. *found =
- * NULL and MT_OK when absent.
+ * The parameter called name, checked to be of type want, and to have one
+ * element when single. *found = NULL and MT_OK when absent.
  */
-static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type want,
-                        mt_param_type want2, int single, const mt_param **found, mt_error *err)
+static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type want, int single,
+                        const mt_param **found, mt_error *err)
 {
     int i = index_of(ps, name);
     const mt_param *p;
@@ -265,7 +264,7 @@ static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type w
     if (i < 0) return MT_OK;
     p = &ps->e[i].p;
     mark(ps, i);
-    if (p->type != want && p->type != want2) {
+    if (p->type != want) {
         mt_error_param(err, MT_ERR_INVALID, name, "is declared \"%s %s\" but is read as %s",
                        p->type_name, name, type_desc(want));
         return fail(p, MT_ERR_INVALID, err);
@@ -288,7 +287,7 @@ mt_status mt_params_float(const mt_paramset *ps, const char *name, mt_real def, 
                           mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_FLOAT, MT_PARAM_FLOAT, 1, &p, err);
+    mt_status st = lookup(ps, name, MT_PARAM_FLOAT, 1, &p, err);
     *out = p ? (mt_real)p->reals[0] : def;
     return st;
 }
@@ -297,7 +296,7 @@ static mt_status one_int(const mt_paramset *ps, const char *name, mt_param_type 
                          int *out, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, t, 1, &p, err);
+    mt_status st = lookup(ps, name, t, 1, &p, err);
     *out = p ? p->ints[0] : def;
     return st;
 }
@@ -318,7 +317,7 @@ static mt_status one_string(const mt_paramset *ps, const char *name, mt_param_ty
                             const char *def, const char **out, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, t, 1, &p, err);
+    mt_status st = lookup(ps, name, t, 1, &p, err);
     *out = p ? p->strings[0] : def;
     return st;
 }
@@ -339,7 +338,7 @@ mt_status mt_params_filename(const mt_paramset *ps, const char *name, const char
                              char *out, size_t size, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_STRING, MT_PARAM_STRING, 1, &p, err);
+    mt_status st = lookup(ps, name, MT_PARAM_STRING, 1, &p, err);
     if (st != MT_OK) return st;
     /* pbrt-v2 FindOneFilename: an absent or empty name gives the default as
      * it is; any other is resolved against the statement's directory. */
@@ -366,7 +365,7 @@ static mt_status one_vec(const mt_paramset *ps, const char *name, mt_param_type 
                          mt_vec3 *out, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, t, 1, &p, err);
+    mt_status st = lookup(ps, name, t, 1, &p, err);
     *out = p ? mt_v3((mt_real)p->reals[0], (mt_real)p->reals[1], (mt_real)p->reals[2]) : def;
     return st;
 }
@@ -393,7 +392,7 @@ mt_status mt_params_rgb(const mt_paramset *ps, const char *name, mt_rgb def, mt_
                         mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_SPECTRUM, MT_PARAM_SPECTRUM, 1, &p, err);
+    mt_status st = lookup(ps, name, MT_PARAM_SPECTRUM, 1, &p, err);
     *out = p ? mt_rgb_make((mt_real)p->reals[0], (mt_real)p->reals[1], (mt_real)p->reals[2]) : def;
     return st;
 }
@@ -402,7 +401,7 @@ static mt_status array_of(const mt_paramset *ps, const char *name, mt_param_type
                           const double **values, int *count, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, t, 0, &p, err);
+    mt_status st = lookup(ps, name, t, 0, &p, err);
     *values = p ? p->reals : NULL;
     *count = p ? p->count : 0;
     return st;
@@ -436,7 +435,7 @@ mt_status mt_params_ints(const mt_paramset *ps, const char *name, const int **va
                          int *count, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_INTEGER, MT_PARAM_INTEGER, 0, &p, err);
+    mt_status st = lookup(ps, name, MT_PARAM_INTEGER, 0, &p, err);
     *values = p ? p->ints : NULL;
     *count = p ? p->count : 0;
     return st;
