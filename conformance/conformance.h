@@ -99,6 +99,7 @@ mt_status cf_extremes(const cf_subject *s, mt_mode mode, cf_result *res, mt_erro
 /* Checks that are not per subject. */
 void cf_light_leak(cf_rows *rows);
 void cf_distribution_normalization(cf_rows *rows);
+void cf_furnace_table(cf_rows *rows);
 void cf_extreme_grid(cf_rows *rows);
 void cf_rejects_invalid(cf_rows *rows);
 

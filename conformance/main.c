@@ -275,9 +275,10 @@ int main(int argc, char **argv)
     nthreads = cfg.threads < p.njobs ? cfg.threads : (p.njobs > 0 ? p.njobs : 1);
     for (t = 0; t < nthreads; ++t) pthread_create(&th[t], NULL, worker, &p);
     /* the pair-by-pair checks run here meanwhile */
-    if (!cfg.only) {
+    if (!cfg.only || !strcmp(cfg.only, "pointwise")) { /* --only pointwise: these alone */
         cf_light_leak(&extra);
         cf_distribution_normalization(&extra);
+        cf_furnace_table(&extra);
         cf_rejects_invalid(&extra);
         cf_extreme_grid(&extra);
     }
