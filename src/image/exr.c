@@ -21,6 +21,7 @@
  */
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -45,14 +46,27 @@ typedef struct exr_stream {
     char msg[256];
 } exr_stream;
 
+/* The error callback reaches the current stream through a thread-specific
+ * pointer: exr_get_user_data would take the context's lock, which a write
+ * context already holds when it reports (a deadlock). */
+static pthread_key_t stream_key;
+static pthread_once_t stream_key_once = PTHREAD_ONCE_INIT;
+static int stream_key_ok;
+
+static void make_stream_key(void) { stream_key_ok = pthread_key_create(&stream_key, NULL) == 0; }
+
+static void bind_stream(exr_stream *s)
+{
+    pthread_once(&stream_key_once, make_stream_key);
+    if (stream_key_ok) pthread_setspecific(stream_key, s);
+}
+
 static void on_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
 {
-    void *ud = NULL;
-    exr_stream *s;
+    exr_stream *s = stream_key_ok ? pthread_getspecific(stream_key) : NULL;
+    (void)ctxt;
     (void)code;
-    if (!ctxt || exr_get_user_data(ctxt, &ud) != EXR_ERR_SUCCESS || !ud) return;
-    s = ud;
-    if (!s->msg[0] && msg) snprintf(s->msg, sizeof s->msg, "%s", msg);
+    if (s && !s->msg[0] && msg) snprintf(s->msg, sizeof s->msg, "%s", msg);
 }
 
 static int64_t stream_read(exr_const_context_t ctxt, void *ud, void *buffer, uint64_t sz,
@@ -357,11 +371,13 @@ mt_status mt__exr_read(const char *path, mt_image *img, mt_error *err)
         return mt_error_set(err, MT_ERR_IO, "%s: not a regular file", path);
     }
     r.stream.size = (int64_t)sb.st_size;
+    bind_stream(&r.stream);
     st = read_image(&r, img, err);
     if (r.dec_ready) exr_decoding_destroy(r.ctx, &r.dec);
     if (r.ctx) exr_finish(&r.ctx);
     mt__free(r.planes);
     close(r.stream.fd);
+    bind_stream(NULL);
     return st;
 }
 
@@ -388,7 +404,30 @@ typedef struct exr_writer {
     int chunk_w, chunk_h;
     exr_encode_pipeline_t enc;
     int enc_ready;
+    exr_result_t (*compress)(exr_encode_pipeline_t *); /* the library's own */
 } exr_writer;
+
+/* The library's compressor, made to store a chunk raw when compression does
+ * not make it smaller. OpenEXR 3.1.5's ZIP keeps an incompressible chunk's
+ * compressed bytes when they are exactly as long as the raw data; a reader
+ * then takes them for raw pixels (packed size = unpacked size), and every
+ * value of the chunk is wrong -- in OpenEXR's own readers too. */
+static exr_result_t compress_or_store(exr_encode_pipeline_t *enc)
+{
+    exr_writer *w = enc->encoding_user_data;
+    exr_result_t rv = w->compress(enc);
+    if (rv != EXR_ERR_SUCCESS || enc->compressed_bytes < enc->packed_bytes) return rv;
+    if (enc->compressed_alloc_size < enc->packed_bytes) {
+        void *p = mt__malloc(enc->packed_bytes);
+        if (!p) return EXR_ERR_OUT_OF_MEMORY;
+        mt__free(enc->compressed_buffer);
+        enc->compressed_buffer = p;
+        enc->compressed_alloc_size = enc->packed_bytes;
+    }
+    memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    enc->compressed_bytes = enc->packed_bytes;
+    return EXR_ERR_SUCCESS;
+}
 
 static void store_value(uint8_t *p, float v, int type)
 {
@@ -441,6 +480,11 @@ static mt_status encode_chunk(exr_writer *w, const exr_chunk_info_t *ci, int x, 
             }
     }
     rv = exr_encoding_choose_default_routines(w->ctx, 0, &w->enc);
+    if (rv == EXR_ERR_SUCCESS && w->enc.compress_fn) {
+        w->compress = w->enc.compress_fn;
+        w->enc.encoding_user_data = w;
+        w->enc.compress_fn = compress_or_store;
+    }
     if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(w->ctx, 0, &w->enc);
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, w->path, &w->stream, rv, "cannot encode");
     return MT_OK;
@@ -544,6 +588,7 @@ mt_status mt__exr_write(const char *path, const mt_image *img, const mt_image_at
     st = mt__tmpfile_open(&tmp, path, err);
     if (st != MT_OK) return st;
     w.stream.fd = tmp.fd;
+    bind_stream(&w.stream);
     init = initializer(&w.stream);
     init.write_fn = stream_write;
     rv = exr_start_write(&w.ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
@@ -561,6 +606,7 @@ mt_status mt__exr_write(const char *path, const mt_image *img, const mt_image_at
             st = exr_fail(err, path, &w.stream, rv, "cannot finish the file");
     }
     mt__free(w.planes);
+    bind_stream(NULL);
     if (st != MT_OK) {
         mt__tmpfile_abort(&tmp);
         return st;
