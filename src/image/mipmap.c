@@ -221,6 +221,9 @@ mt_rgb mt_mipmap_lookup(const mt_mipmap *m, mt_real s, mt_real t, mt_real ds0, m
     }
     if (minor == 0) return triangle(m, 0, s, t);
     lod = mt_max(0, (mt_real)m->levels - 1 + log2_pbrt(minor));
+    /* an axis whose square overflowed: pbrt-v2 converts an infinite lod to
+     * int; the infinitely wide footprint's limit is the top level */
+    if (!(lod < (mt_real)1e6)) return top_texel(m);
     ilod = (int)mt_floor(lod);
     d = lod - (mt_real)ilod;
     a = ewa(m, ilod, s, t, ds0, dt0, ds1, dt1, &ok);
