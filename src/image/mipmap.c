@@ -23,8 +23,10 @@ static const mt_real *texel_at(const mt_mipmap *m, int level, int s, int t)
     const mt__level *l = &m->level[level];
     switch (m->wrap) {
     case MT_WRAP_REPEAT:
-        s = mt__mod(s, l->w);
-        t = mt__mod(t, l->h);
+        /* every level's sides are powers of two: the mask is pbrt-v2's Mod,
+         * negative arguments included (two's complement) */
+        s &= l->w - 1;
+        t &= l->h - 1;
         break;
     case MT_WRAP_CLAMP:
         s = s < 0 ? 0 : (s > l->w - 1 ? l->w - 1 : s);

@@ -192,3 +192,26 @@ void t_footprints(t_footprint *f, int nclusters, int per_cluster, int n, double 
         }
     }
 }
+
+const char *const t_filter_names[T_NFILTERS] = {"point (no filter)", "trilinear",
+                                                "trilinear, pbrt-v2 width", "EWA"};
+
+double t_filter_lookup(const mt_mipmap *m, int filter, const t_footprint *p)
+{
+    mt_real x = (mt_real)p->x, y = (mt_real)p->y;
+    switch (filter) {
+    case T_F_POINT: return mt_mipmap_lookup_width(m, x, y, 0).c[0];
+    case T_F_TRI: return mt_mipmap_lookup_width(m, x, y, (mt_real)p->w).c[0];
+    case T_F_TRI_PBRT: return mt_mipmap_lookup_width(m, x, y, (mt_real)(2 * p->w)).c[0];
+    default:
+        return mt_mipmap_lookup(m, x, y, (mt_real)p->ds0, (mt_real)p->dt0, (mt_real)p->ds1,
+                                (mt_real)p->dt1)
+            .c[0];
+    }
+}
+
+t_ref t_filter_reference(const mt_image *img, int filter, const t_footprint *p)
+{
+    return filter == T_F_EWA ? t_ref_ellipse(img, p->x, p->y, p->ds0, p->dt0, p->cs1, p->ct1)
+                             : t_ref_box(img, p->x, p->y, p->w);
+}

@@ -21,6 +21,7 @@
 #include <stdint.h>
 #include "materia.h"
 #include "materia/image.h"
+#include "materia/mipmap.h"
 
 #define T_MAX_WAVES 4
 
@@ -75,5 +76,15 @@ typedef struct t_footprint {
  * texels, EWA major semi-axes 1 to 16 texels with axis ratios 1 to 16. */
 void t_footprints(t_footprint *f, int nclusters, int per_cluster, int n, double maxaniso,
                   uint64_t seed);
+
+/* The filters compared: point (bilinear at level 0, "no filter"),
+ * trilinear at width w, trilinear at pbrt-v2's doubled width 2w, and EWA
+ * with the footprint's differentials. */
+enum { T_F_POINT, T_F_TRI, T_F_TRI_PBRT, T_F_EWA, T_NFILTERS };
+extern const char *const t_filter_names[T_NFILTERS];
+/* A filter's lookup (channel 0), and its reference: the box of side w for
+ * the isotropic filters, the clamped Gaussian ellipse for EWA. */
+double t_filter_lookup(const mt_mipmap *m, int filter, const t_footprint *p);
+t_ref t_filter_reference(const mt_image *img, int filter, const t_footprint *p);
 
 #endif
