@@ -14,15 +14,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpedantic"
-#endif
-#include <OpenEXR/openexr.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 #include "image/imageio.h"
+#include "image/openexr.h"
 #include "materia/image.h"
 #include "support/check.h"
 
@@ -121,6 +114,26 @@ static void check_same(const mt_image *got, const mt_image *want, const char *na
     }
 }
 
+/* After a write that returned st (err filled), reads path back and
+ * compares with want value for value. */
+static void check_read_back(const char *path, mt_status st, const mt_error *err,
+                            const mt_image *want, const char *name)
+{
+    mt_image got;
+    mt_error rerr;
+    if (st != MT_OK) {
+        t_fail(name, "write: %s", err->message);
+        return;
+    }
+    mt_error_clear(&rerr);
+    if (mt_image_read(path, &got, &rerr) != MT_OK) {
+        t_fail(name, "read: %s", rerr.message);
+        return;
+    }
+    check_same(&got, want, name);
+    mt_image_free(&got);
+}
+
 static int names_file(const mt_error *err, const char *path)
 {
     return strstr(err->message, path) != NULL;
@@ -187,7 +200,7 @@ static void exr_round_trip(const char *name, int w, int h, int nc, int ptype, in
                            int tile, int x0, int y0)
 {
     mt__exr_options o;
-    mt_image img, want, got;
+    mt_image img, want;
     mt_error err;
     const char *path = in_dir("rt.exr");
     size_t i;
@@ -206,14 +219,7 @@ static void exr_round_trip(const char *name, int w, int h, int nc, int ptype, in
         want.data[i] = v;
     }
     mt_error_clear(&err);
-    if (mt__exr_write(path, &img, NULL, 0, &o, &err) != MT_OK) {
-        t_fail(name, "write: %s", err.message);
-    } else if (mt_image_read(path, &got, &err) != MT_OK) {
-        t_fail(name, "read: %s", err.message);
-    } else {
-        check_same(&got, &want, name);
-        mt_image_free(&got);
-    }
+    check_read_back(path, mt__exr_write(path, &img, NULL, 0, &o, &err), &err, &want, name);
     mt_image_free(&img);
     mt_image_free(&want);
     unlink(path);
@@ -228,7 +234,7 @@ static void test_exr_round_trips(void)
                 {EXR_COMPRESSION_ZIPS, "zips"}, {EXR_COMPRESSION_ZIP, "zip"},
                 {EXR_COMPRESSION_PIZ, "piz"}};
     char name[128];
-    mt_image img, got;
+    mt_image img;
     mt_error err;
     int k, nc;
     /* the public writer: float, ZIP; 1, 3 and 4 channels */
@@ -237,13 +243,8 @@ static void test_exr_round_trips(void)
         fill_image(&img, 37, 23, nc, (unsigned)nc);
         snprintf(name, sizeof name, "exr: float round trip, %d channel(s)", nc);
         mt_error_clear(&err);
-        if (mt_image_write(in_dir("pub.exr"), &img, NULL, 0, &err) != MT_OK ||
-            mt_image_read(in_dir("pub.exr"), &got, &err) != MT_OK) {
-            t_fail(name, "%s", err.message);
-        } else {
-            check_same(&got, &img, name);
-            mt_image_free(&got);
-        }
+        check_read_back(in_dir("pub.exr"), mt_image_write(in_dir("pub.exr"), &img, NULL, 0, &err),
+                        &err, &img, name);
         mt_image_free(&img);
     }
     for (k = 0; k < (int)(sizeof comp / sizeof comp[0]); k++) {
@@ -447,6 +448,18 @@ static bytes make_png(int w, int h, int depth, int color, const unsigned char *r
     return b;
 }
 
+/* Writes a built PNG (and frees it) and reads it back; reports the read. */
+static int read_built(const char *path, bytes b, mt_image *img, const char *name)
+{
+    mt_error err;
+    int ok;
+    write_bytes(path, b.p, b.n);
+    free(b.p);
+    mt_error_clear(&err);
+    ok = mt_image_read(path, img, &err) == MT_OK;
+    return t_check(ok, name, "%s", err.message);
+}
+
 static void test_png_kinds(void)
 {
     /* 1-bit gray, 3 x 2: rows 101, 010 */
@@ -461,41 +474,25 @@ static void test_png_kinds(void)
     static const unsigned char rgb16[] = {0, 0x12, 0x34, 0xff, 0xff, 0x00, 0x01};
     const char *path = in_dir("kind.png");
     mt_image img;
-    mt_error err;
-    bytes b;
-    int ok;
 #define LIN(k) mt_srgb_to_linear((float)(k) / 255.f)
-
-    b = make_png(3, 2, 1, 0, g1, sizeof g1, NULL, 0, NULL, 0);
-    write_bytes(path, b.p, b.n);
-    free(b.p);
-    mt_error_clear(&err);
-    ok = mt_image_read(path, &img, &err) == MT_OK;
-    if (t_check(ok, "png: 1-bit gray reads", "%s", err.message)) {
+    if (read_built(path, make_png(3, 2, 1, 0, g1, sizeof g1, NULL, 0, NULL, 0), &img,
+                   "png: 1-bit gray reads")) {
         t_check(img.channels == 1 && img.width == 3 && img.height == 2 && img.data[0] == 1 &&
                     img.data[1] == 0 && img.data[2] == 1 && img.data[3] == 0 &&
                     img.data[4] == 1 && img.data[5] == 0,
                 "png: 1-bit gray values", "wrong pixels");
         mt_image_free(&img);
     }
-
-    b = make_png(2, 1, 8, 4, ga, sizeof ga, NULL, 0, NULL, 0);
-    write_bytes(path, b.p, b.n);
-    free(b.p);
-    ok = mt_image_read(path, &img, &err) == MT_OK;
-    if (t_check(ok, "png: gray-alpha reads", "%s", err.message)) {
+    if (read_built(path, make_png(2, 1, 8, 4, ga, sizeof ga, NULL, 0, NULL, 0), &img,
+                   "png: gray-alpha reads")) {
         t_check(img.channels == 4 && img.data[0] == LIN(200) && img.data[1] == LIN(200) &&
                     img.data[2] == LIN(200) && img.data[3] == 1 && img.data[4] == LIN(17) &&
                     img.data[7] == 0,
                 "png: gray-alpha is RGBA, gray decoded, alpha linear", "wrong pixels");
         mt_image_free(&img);
     }
-
-    b = make_png(4, 1, 2, 3, pal, sizeof pal, plte, 4, trns, 3);
-    write_bytes(path, b.p, b.n);
-    free(b.p);
-    ok = mt_image_read(path, &img, &err) == MT_OK;
-    if (t_check(ok, "png: 2-bit palette with tRNS reads", "%s", err.message)) {
+    if (read_built(path, make_png(4, 1, 2, 3, pal, sizeof pal, plte, 4, trns, 3), &img,
+                   "png: 2-bit palette with tRNS reads")) {
         t_check(img.channels == 4 && img.data[0] == 1 && img.data[1] == 0 && img.data[3] == 1 &&
                     img.data[5] == LIN(128) && img.data[7] == 0 && img.data[8] == LIN(10) &&
                     img.data[10] == LIN(30) && img.data[11] == 128.f / 255.f &&
@@ -503,12 +500,8 @@ static void test_png_kinds(void)
                 "png: palette expanded, tRNS as alpha", "wrong pixels");
         mt_image_free(&img);
     }
-
-    b = make_png(1, 1, 16, 2, rgb16, sizeof rgb16, NULL, 0, NULL, 0);
-    write_bytes(path, b.p, b.n);
-    free(b.p);
-    ok = mt_image_read(path, &img, &err) == MT_OK;
-    if (t_check(ok, "png: 16-bit RGB reads", "%s", err.message)) {
+    if (read_built(path, make_png(1, 1, 16, 2, rgb16, sizeof rgb16, NULL, 0, NULL, 0), &img,
+                   "png: 16-bit RGB reads")) {
         t_check(img.channels == 3 && img.data[0] == mt_srgb_to_linear(0x1234 / 65535.f) &&
                     img.data[1] == 1 && img.data[2] == mt_srgb_to_linear(1 / 65535.f),
                 "png: 16-bit values decoded from sRGB", "got %.9g %.9g %.9g", img.data[0],
@@ -523,7 +516,7 @@ static void test_png_kinds(void)
 static void test_png_round_trips(void)
 {
     const char *path = in_dir("rt.png");
-    mt_image img, got, want;
+    mt_image img, want;
     mt_error err;
     int nc, k, bits;
     for (bits = 8; bits <= 16; bits += 8)
@@ -546,14 +539,10 @@ static void test_png_round_trips(void)
             want.data[nc] = 1;
             snprintf(name, sizeof name, "png: %d-bit, %d channel(s), codes exact", bits, nc);
             mt_error_clear(&err);
-            if ((bits == 8 ? mt_image_write(path, &img, NULL, 0, &err)
-                           : mt__png_write(path, &img, 16, &err)) != MT_OK ||
-                mt_image_read(path, &got, &err) != MT_OK) {
-                t_fail(name, "%s", err.message);
-            } else {
-                check_same(&got, &want, name);
-                mt_image_free(&got);
-            }
+            check_read_back(path,
+                            bits == 8 ? mt_image_write(path, &img, NULL, 0, &err)
+                                      : mt__png_write(path, &img, 16, &err),
+                            &err, &want, name);
             mt_image_free(&img);
             mt_image_free(&want);
         }
@@ -614,13 +603,7 @@ static void test_pfm(void)
         fill_image(&img, 13, 7, nc, (unsigned)(40 + nc));
         snprintf(name, sizeof name, "pfm: round trip, %d channel(s)", nc);
         mt_error_clear(&err);
-        if (mt_image_write(path, &img, NULL, 0, &err) != MT_OK ||
-            mt_image_read(path, &got, &err) != MT_OK) {
-            t_fail(name, "%s", err.message);
-        } else {
-            check_same(&got, &img, name);
-            mt_image_free(&got);
-        }
+        check_read_back(path, mt_image_write(path, &img, NULL, 0, &err), &err, &img, name);
         mt_image_free(&img);
     }
     /* big endian (scale +1): 2 x 2, file rows bottom to top */

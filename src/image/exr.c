@@ -26,16 +26,9 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpedantic"
-#endif
-#include <OpenEXR/openexr.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 #include "core/alloc.h"
 #include "image/imageio.h"
+#include "image/openexr.h"
 
 /* The stream behind a context: our own file descriptor (so that a truncated
  * file is measured, and writing goes to our temporary file) and the first
@@ -69,23 +62,34 @@ static void on_error(exr_const_context_t ctxt, exr_result_t code, const char *ms
     if (s && !s->msg[0] && msg) snprintf(s->msg, sizeof s->msg, "%s", msg);
 }
 
+/* pread (rbuf) or pwrite (wbuf) until sz bytes have moved, or the end of
+ * the file when reading: the byte count, or -1 after reporting the error. */
+static int64_t transfer(exr_const_context_t ctxt, int fd, uint8_t *rbuf, const uint8_t *wbuf,
+                        uint64_t sz, uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    uint64_t done = 0;
+    char why[128];
+    while (done < sz) {
+        size_t n = (size_t)(sz - done);
+        off_t at = (off_t)(offset + done);
+        ssize_t got = rbuf ? pread(fd, rbuf + done, n, at) : pwrite(fd, wbuf + done, n, at);
+        if (got < 0) {
+            if (errno == EINTR) continue;
+            if (strerror_r(errno, why, sizeof why) != 0) snprintf(why, sizeof why, "error %d", errno);
+            error_cb(ctxt, rbuf ? EXR_ERR_READ_IO : EXR_ERR_WRITE_IO, "%s failed: %s",
+                     rbuf ? "read" : "write", why);
+            return -1;
+        }
+        if (got == 0) break;
+        done += (uint64_t)got;
+    }
+    return (int64_t)done;
+}
+
 static int64_t stream_read(exr_const_context_t ctxt, void *ud, void *buffer, uint64_t sz,
                            uint64_t offset, exr_stream_error_func_ptr_t error_cb)
 {
-    exr_stream *s = ud;
-    uint8_t *p = buffer;
-    uint64_t done = 0;
-    while (done < sz) {
-        ssize_t n = pread(s->fd, p + done, (size_t)(sz - done), (off_t)(offset + done));
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            error_cb(ctxt, EXR_ERR_READ_IO, "read failed: %s", strerror(errno));
-            return -1;
-        }
-        if (n == 0) break;
-        done += (uint64_t)n;
-    }
-    return (int64_t)done;
+    return transfer(ctxt, ((exr_stream *)ud)->fd, buffer, NULL, sz, offset, error_cb);
 }
 
 static int64_t stream_size(exr_const_context_t ctxt, void *ud)
@@ -97,19 +101,7 @@ static int64_t stream_size(exr_const_context_t ctxt, void *ud)
 static int64_t stream_write(exr_const_context_t ctxt, void *ud, const void *buffer, uint64_t sz,
                             uint64_t offset, exr_stream_error_func_ptr_t error_cb)
 {
-    exr_stream *s = ud;
-    const uint8_t *p = buffer;
-    uint64_t done = 0;
-    while (done < sz) {
-        ssize_t n = pwrite(s->fd, p + done, (size_t)(sz - done), (off_t)(offset + done));
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", strerror(errno));
-            return -1;
-        }
-        done += (uint64_t)n;
-    }
-    return (int64_t)done;
+    return transfer(ctxt, ((exr_stream *)ud)->fd, NULL, buffer, sz, offset, error_cb);
 }
 
 static void *exr_alloc(size_t n) { return mt__malloc(n); }
@@ -136,6 +128,16 @@ static mt_status exr_fail(mt_error *err, const char *path, const exr_stream *s, 
                        : MT_ERR_FORMAT;
     return mt_error_set(err, st, "%s: %s: %s", path, what,
                         s->msg[0] ? s->msg : exr_get_default_error_message(rv));
+}
+
+/* A channel's buffer: its stored type (no conversion by the library),
+ * planar, the chunk's rows one after another. */
+static void planar_native(exr_coding_channel_info_t *ch)
+{
+    ch->user_data_type = ch->data_type;
+    ch->user_bytes_per_element = ch->bytes_per_element;
+    ch->user_pixel_stride = ch->bytes_per_element;
+    ch->user_line_stride = ch->width * ch->bytes_per_element;
 }
 
 /* ---- reading -------------------------------------------------------- */
@@ -244,10 +246,7 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
             if (r->dest[k] < 0) continue;
             if (!ch->channel_name || strcmp(ch->channel_name, slot_names[k]) != 0) continue;
             ch->decode_to_ptr = r->planes + (size_t)k * plane;
-            ch->user_data_type = ch->data_type; /* no conversion by the library */
-            ch->user_bytes_per_element = ch->bytes_per_element;
-            ch->user_pixel_stride = ch->bytes_per_element;
-            ch->user_line_stride = ch->width * ch->bytes_per_element;
+            planar_native(ch);
         }
     }
     rv = exr_decoding_choose_default_routines(r->ctx, 0, &r->dec);
@@ -473,10 +472,7 @@ static mt_status encode_chunk(exr_writer *w, const exr_chunk_info_t *ci, int x, 
         for (k = 0; k < w->nch; k++)
             if (ch->channel_name && strcmp(ch->channel_name, w->names[k]) == 0) {
                 ch->encode_from_ptr = w->planes + (size_t)k * plane;
-                ch->user_data_type = ch->data_type;
-                ch->user_bytes_per_element = ch->bytes_per_element;
-                ch->user_pixel_stride = ch->bytes_per_element;
-                ch->user_line_stride = ch->width * ch->bytes_per_element;
+                planar_native(ch);
             }
     }
     rv = exr_encoding_choose_default_routines(w->ctx, 0, &w->enc);

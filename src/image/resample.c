@@ -78,13 +78,34 @@ static int wrap_index(int i, int res, mt_wrap wrap)
     return i >= 0 && i < res ? i : -1;
 }
 
+/* One line of the zoom: dst[i] (i < dstlen, stride dstep) from src[k]
+ * (k < srclen, stride sstep) with the taps wt, nc values per texel;
+ * MIPMap::MIPMap's inner loops, accumulating from 0 in tap order. */
+static void zoom_line(const mt_real *src, size_t sstep, int srclen, mt_real *dst, size_t dstep,
+                      int dstlen, const resample_weight *wt, mt_wrap wrap, int nc)
+{
+    int i, j, c;
+    for (i = 0; i < dstlen; i++) {
+        mt_real *d = dst + (size_t)i * dstep;
+        for (c = 0; c < nc; c++) d[c] = 0;
+        for (j = 0; j < 4; j++) {
+            int k = wrap_index(wt[i].first + j, srclen, wrap);
+            const mt_real *p;
+            if (k < 0) continue;
+            p = src + (size_t)k * sstep;
+            for (c = 0; c < nc; c++) d[c] += wt[i].w[j] * p[c];
+        }
+    }
+}
+
 mt_real *mt__resample_pow2(int w, int h, int nc, const mt_real *texels, mt_wrap wrap, int *pw,
                            int *ph)
 {
-    int sp = mt__round_up_pow2(w), tp = mt__round_up_pow2(h), s, t, j, c;
+    int sp = mt__round_up_pow2(w), tp = mt__round_up_pow2(h), s, t, c;
+    size_t px = (size_t)nc, row = (size_t)sp * px;
     resample_weight *sw = resample_weights(w, sp), *tw = resample_weights(h, tp);
-    mt_real *out = mt__calloc((size_t)sp * (size_t)tp * (size_t)nc, sizeof(mt_real));
-    mt_real *work = mt__malloc(sizeof(mt_real) * (size_t)tp * (size_t)nc);
+    mt_real *out = mt__calloc((size_t)sp * (size_t)tp * px, sizeof(mt_real));
+    mt_real *work = mt__malloc(sizeof(mt_real) * (size_t)tp * px);
     if (!sw || !tw || !out || !work) {
         mt__free(out);
         out = NULL;
@@ -92,34 +113,16 @@ mt_real *mt__resample_pow2(int w, int h, int nc, const mt_real *texels, mt_wrap 
     }
     /* zoom in s: rows t < h of out */
     for (t = 0; t < h; t++)
-        for (s = 0; s < sp; s++) {
-            mt_real *dst = out + ((size_t)t * (size_t)sp + (size_t)s) * (size_t)nc;
-            for (j = 0; j < 4; j++) {
-                int os = wrap_index(sw[s].first + j, w, wrap);
-                const mt_real *src;
-                if (os < 0) continue;
-                src = texels + ((size_t)t * (size_t)w + (size_t)os) * (size_t)nc;
-                for (c = 0; c < nc; c++) dst[c] += sw[s].w[j] * src[c];
-            }
-        }
-    /* zoom in t, column by column, through a work column */
+        zoom_line(texels + (size_t)t * (size_t)w * px, px, w, out + (size_t)t * row, px, sp, sw,
+                  wrap, nc);
+    /* zoom in t, column by column through a work column, then Clamp(v, 0,
+     * INFINITY) */
     for (s = 0; s < sp; s++) {
-        for (t = 0; t < tp; t++) {
-            mt_real *acc = work + (size_t)t * (size_t)nc;
-            for (c = 0; c < nc; c++) acc[c] = 0;
-            for (j = 0; j < 4; j++) {
-                int ot = wrap_index(tw[t].first + j, h, wrap);
-                const mt_real *src;
-                if (ot < 0) continue;
-                src = out + ((size_t)ot * (size_t)sp + (size_t)s) * (size_t)nc;
-                for (c = 0; c < nc; c++) acc[c] += tw[t].w[j] * src[c];
-            }
-        }
+        zoom_line(out + (size_t)s * px, row, h, work, px, tp, tw, wrap, nc);
         for (t = 0; t < tp; t++)
             for (c = 0; c < nc; c++) {
-                mt_real v = work[(size_t)t * (size_t)nc + (size_t)c];
-                /* Clamp(v, 0, INFINITY) */
-                out[((size_t)t * (size_t)sp + (size_t)s) * (size_t)nc + (size_t)c] = v < 0 ? 0 : v;
+                mt_real v = work[(size_t)t * px + (size_t)c];
+                out[(size_t)t * row + (size_t)s * px + (size_t)c] = v < 0 ? 0 : v;
             }
     }
     *pw = sp;
