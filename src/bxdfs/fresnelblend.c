@@ -11,13 +11,18 @@ typedef struct fresnelblend {
     mt_distribution dist;
 } fresnelblend;
 
-static mt_rgb schlick(const fresnelblend *fb, mt_real costheta)
+/* x^5 by multiplication: pbrt-v2 calls powf(x, 5), which this matches to a
+ * couple of ulps at a fraction of the cost (three of these per evaluation). */
+static mt_real pow5(mt_real x)
 {
-    return mt_rgb_add(fb->Rs, mt_rgb_scale(mt_rgb_sub(mt_rgb_gray(1), fb->Rs),
-                                           mt_pow(1 - costheta, 5)));
+    mt_real x2 = x * x;
+    return x2 * x2 * x;
 }
 
-static mt_real pow5(mt_real x) { return mt_pow(x, 5); }
+static mt_rgb schlick(const fresnelblend *fb, mt_real costheta)
+{
+    return mt_rgb_add(fb->Rs, mt_rgb_scale(mt_rgb_sub(mt_rgb_gray(1), fb->Rs), pow5(1 - costheta)));
+}
 
 static mt_rgb fresnelblend_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
 {
@@ -25,19 +30,25 @@ static mt_rgb fresnelblend_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
     mt_real ci = mt_abs_cos_theta(wi), co = mt_abs_cos_theta(wo), den;
     /* (28/(23 pi)) Rd (1 - Rs) (1 - (1 - cos_i/2)^5) (1 - (1 - cos_o/2)^5),
      * multiplied left to right as in pbrt-v2 */
+    /* the two direction factors in a fixed order (larger cosine first), so
+     * that swapping wo and wi rounds the same way */
+    mt_real fi = 1 - pow5(1 - (mt_real)0.5 * mt_max(ci, co)), fo = 1 - pow5(1 - (mt_real)0.5 * mt_min(ci, co));
     mt_rgb diffuse = mt_rgb_scale(
         mt_rgb_scale(mt_rgb_mul(mt_rgb_scale(fb->Rd, 28 / (23 * MT_PI)),
                                 mt_rgb_sub(mt_rgb_gray(1), fb->Rs)),
-                     1 - pow5(1 - (mt_real)0.5 * ci)),
-        1 - pow5(1 - (mt_real)0.5 * co));
+                     fi),
+        fo);
     mt_vec3 wh = mt_v3_add(wi, wo);
+    mt_real widotwh;
     if (mt_v3_is_zero(wh)) return mt_rgb_black();
+    /* wi.wh = |wo + wi| / 2, symmetric in wo and wi (see microfacet.c) */
+    widotwh = mt_v3_len(wh) / 2;
     wh = mt_v3_normalize(wh);
-    den = 4 * mt_v3_absdot(wi, wh) * mt_max(ci, co);
+    den = 4 * widotwh * mt_max(ci, co);
     /* Both directions grazing (or wi = -wo up to rounding): pbrt-v2 divides by
      * zero; such directions carry no energy (erratum grazing-division). */
     if (den == 0) return diffuse;
-    return mt_rgb_add(diffuse, mt_rgb_scale(schlick(fb, mt_v3_dot(wi, wh)),
+    return mt_rgb_add(diffuse, mt_rgb_scale(schlick(fb, widotwh),
                                             mt_distribution_d(&fb->dist, wh, b->mode) / den));
 }
 
