@@ -138,7 +138,7 @@ static void bsdf_values(const char *tool, const char *tmp)
         line[strcspn(line, "\r\n")] = 0;
         if (!tab) continue;
         *tab = 0;
-        snprintf(ids[nid], sizeof ids[nid], "%s", line);
+        snprintf(ids[nid], sizeof ids[nid], "%.63s", line);
         ng[nid][0] = 0;
         if ((hash = strstr(tab + 1, "# ng="))) {
             double x, y, z;
@@ -264,7 +264,7 @@ static void texture_values(const char *tool, const char *tmp)
         line[strcspn(line, "\r\n")] = 0;
         if (!t1 || !(t2 = strchr(t1 + 1, '\t'))) continue;
         *t1 = *t2 = 0;
-        snprintf(ids[nid], sizeof ids[nid], "%s", line);
+        snprintf(ids[nid], sizeof ids[nid], "%.63s", line);
         is_float[nid] = !strcmp(t1 + 1, "float");
         fprintf(fi, "AttributeBegin\n%s\n", t2 + 1);
         for (i = 0; i < nrows; ++i) {
@@ -419,7 +419,7 @@ int main(int argc, char **argv)
     bsdf_values(tool, tmpl);
     texture_values(tool, tmpl);
     bump_values(tool, tmpl);
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpl);
+    snprintf(cmd, sizeof cmd, "rm -rf '%.900s'", tmpl);
     if (system(cmd) != 0) t_fail("cleanup", "could not remove %s", tmpl);
     return t_status();
 }
