@@ -192,7 +192,7 @@ static void bsdf_values(const char *tool, const char *tmp)
                     if (shown++ < 3) printf("  %s %s row %d: %s\n", ids[c], rows[i].kind, nrow, why);
                 }
             }
-            snprintf(bname, sizeof bname, "pbrt-v2 values %s (materia-query)", ids[c]);
+            snprintf(bname, sizeof bname, "pbrt-v2 values %.63s (materia-query)", ids[c]);
             verdict(bname, nrow, bad, 400);
             fgets(line, sizeof line, fo); /* bssrdf */
             have_bss[c] = sscanf(line, "%lf %lf %lf %lf %lf %lf %lf", &bss[c][0], &bss[c][1], &bss[c][2], &bss[c][3],
@@ -316,7 +316,7 @@ static void texture_values(const char *tool, const char *tmp)
             }
         }
         fgets(line, sizeof line, fo); /* AttributeEnd */
-        snprintf(name, sizeof name, "pbrt-v2 texture values %s (materia-query)", ids[c]);
+        snprintf(name, sizeof name, "pbrt-v2 texture values %.63s (materia-query)", ids[c]);
         verdict(name, nrow, bad, 108);
     }
     fclose(fo);
