@@ -18,8 +18,9 @@
 #include "image/openexr.h"
 #include "materia/image.h"
 #include "support/check.h"
+#include "support/tfiles.h"
 
-static char dir[256];
+static const char *dir; /* the test's private directory */
 
 static const char *in_dir(const char *name)
 {
@@ -874,9 +875,8 @@ static void test_write_failures(void)
 
 int main(void)
 {
-    const char *tmp = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/materia-image-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(dir)) {
+    dir = t_tmpdir_create("image");
+    if (!dir) {
         t_fail("setup", "cannot create a temporary directory");
         return 1;
     }
@@ -890,7 +890,6 @@ int main(void)
     test_pfm();
     test_corrupt();
     test_write_failures();
-    clear_dir();
-    rmdir(dir);
+    t_tmpdir_remove();
     return t_status();
 }

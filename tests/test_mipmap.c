@@ -21,6 +21,7 @@
 #include "materia/mipmap.h"
 #include "support/check.h"
 #include "support/mipref.h"
+#include "support/tfiles.h"
 
 #define PI 3.14159265358979323846
 #define EPS ((double)(MT_USE_DOUBLE ? 2.220446049250313e-16 : 1.1920928955078125e-07))
@@ -668,14 +669,13 @@ static void *cache_thread(void *arg)
 
 static void test_cache(void)
 {
-    char dir[256], missing[320];
-    const char *tmp = getenv("TMPDIR");
+    char missing[320];
+    const char *dir = t_tmpdir_create("mipmap");
     mt_image img;
     mt_error err;
     mt_mipmap *a, *b, *c, *fl, *neg;
     int k, ok;
-    snprintf(dir, sizeof dir, "%s/materia-mipmap-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(dir)) {
+    if (!dir) {
         t_fail("cache: setup", "no temporary directory");
         return;
     }
@@ -748,8 +748,7 @@ static void test_cache(void)
     t_check(mt_mipmap_cache_size() == 0, "cache: clear empties it", "%d left",
             mt_mipmap_cache_size());
     mt_image_free(&img);
-    unlink(cache_path);
-    rmdir(dir);
+    t_tmpdir_remove();
 }
 
 int main(void)
