@@ -407,7 +407,7 @@ static void test_noise_properties(void)
 }
 
 /* FBm and Turbulence: weights omega^i at frequencies 1.99^i, the octave
- * count min(maxOctaves, 1 - log2(max(|dpdx|^2, |dpdy|^2)) / 2), the last
+ * count min(maxOctaves, -1 - log2(max(|dpdx|^2, |dpdy|^2)) / 2), the last
  * octave faded in by SmoothStep(.3, .7, fraction), and Turbulence's 0.2 per
  * octave left out. */
 static mt_real octave(mt_vec3 p, int i)
@@ -435,12 +435,12 @@ static void test_fbm(void)
     t_near(mt__turbulence(p, zero, zero, omega, 5), tsum, 1e-6,
            "turbulence: sum of omega^i |Noise(1.99^i P)|, nothing left out");
     t_check(mt__fbm(p, zero, zero, 0, 5) == octave(p, 0), "fbm: omega 0 is Noise(P)", "-");
-    /* footprint 2^-3.5: 1 - log2(2^-7)/2 = 4.5 octaves: 4 whole, the fifth at
-     * SmoothStep(.3, .7, .5) = 1/2; the octave count uses the longer vector */
-    d45 = mt_v3(0, (mt_real)pow(2, -3.5), 0);
-    small = mt_v3((mt_real)1e-3, 0, 0);
+    /* footprint 2^-5.5: -1 - log2(2^-11)/2 = 4.5 octaves: 4 whole, the fifth
+     * at SmoothStep(.3, .7, .5) = 1/2; the octave count uses the longer vector */
+    d45 = mt_v3(0, (mt_real)pow(2, -5.5), 0);
+    small = mt_v3((mt_real)1e-4, 0, 0);
     foct = mt__noise_octaves(small, d45, 8, &whole);
-    t_check(fabs(foct - 4.5) < 1e-5 && whole == 4, "fbm: octaves 1 - log2(max |d|^2)/2",
+    t_check(fabs(foct - 4.5) < 1e-5 && whole == 4, "fbm: octaves -1 - log2(max |d|^2)/2",
             "%.7f (%d whole)", foct, whole);
     sum = tsum = 0;
     o = 1;
@@ -458,7 +458,7 @@ static void test_fbm(void)
     foct = mt__noise_octaves(mt_v3((mt_real)1e-9, 0, 0), zero, 6, &whole);
     t_check(foct == 6 && whole == 6, "fbm: octaves clamped to maxOctaves", "%g", foct);
     foct = mt__noise_octaves(mt_v3(16, 0, 0), zero, 6, &whole);
-    t_check(fabs(foct + 3) < 1e-5 && whole == -3 &&
+    t_check(fabs(foct + 5) < 1e-5 && whole == -5 &&
                 mt_is_finite(mt__turbulence(p, mt_v3(16, 0, 0), zero, omega, 6)),
             "fbm: a wide footprint gives negative octave counts (pbrt-v2's formula)", "%g",
             foct);

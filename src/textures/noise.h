@@ -14,8 +14,9 @@
 mt_real mt__noise(mt_real x, mt_real y, mt_real z);
 
 /* pbrt-v2 FBm(P, dpdx, dpdy, omega, maxOctaves): sum of omega^i Noise(1.99^i P)
- * over the octaves the footprint allows, 1 - log2(max |dpdx|^2, |dpdy|^2)/2
- * (clamped to maxOctaves), the last one faded in by SmoothStep(.3, .7). */
+ * over the octaves the footprint allows, -1 - log2(max |dpdx|^2, |dpdy|^2)/2
+ * (clamped to maxOctaves; see noise.c on the -1), the last one faded in by
+ * SmoothStep(.3, .7). */
 mt_real mt__fbm(mt_vec3 p, mt_vec3 dpdx, mt_vec3 dpdy, mt_real omega, int max_octaves);
 /* pbrt-v2 Turbulence: as FBm with |Noise|, plus 0.2 per octave not summed. */
 mt_real mt__turbulence(mt_vec3 p, mt_vec3 dpdx, mt_vec3 dpdy, mt_real omega, int max_octaves);
