@@ -120,6 +120,12 @@ mt_texture *mt__tex_mix(int is_float, mt_texture *tex1, mt_texture *tex2, mt_tex
 /* v[0..3] = v00, v01, v10, v11 (bilerp.h); c[0] for the float variant. */
 mt_texture *mt__tex_bilerp(int is_float, const mt_map2d *map, const mt_rgb v[4], mt_mode mode,
                            mt_error *err);
+/* A lookup of mip (owned by the MIP-map cache, never freed here) at the
+ * mapped coordinates (imagemap.h); a float variant's pyramid holds its
+ * luminance in every channel. */
+struct mt_mipmap;
+mt_texture *mt__tex_imagemap(int is_float, const mt_map2d *map, const struct mt_mipmap *mip,
+                             mt_mode mode, mt_error *err);
 /* (s - floor s, t - floor t, 0): spectrum only (uv.h). */
 mt_texture *mt__tex_uv(const mt_map2d *map, mt_mode mode, mt_error *err);
 /* closedform: 1 for pbrt-v2's "closedform" aamode, 0 for "none". */
