@@ -31,10 +31,17 @@ static const unsigned char perm[256] = {
  * comes from fmod, which is exact, instead of an int conversion. */
 static int lattice(mt_real v, mt_real *frac)
 {
-    mt_real f = mt_floor(v);
-    mt_real r;
+    mt_real f, r;
+    if (v > -(mt_real)1073741824 && v < (mt_real)1073741824) {
+        /* floor by truncation, corrected below zero (libm's floor is a call
+         * without SSE4.1); exact in this range */
+        int i = (int)v;
+        if ((mt_real)i > v) i--;
+        *frac = v - (mt_real)i;
+        return (int)((unsigned)i & 255u);
+    }
+    f = mt_floor(v);
     *frac = v - f;
-    if (f > -(mt_real)1073741824 && f < (mt_real)1073741824) return (int)((unsigned)(int)f & 255u);
     r = mt_fmod(f, 256);
     if (r < 0) r += 256;
     return (int)r;

@@ -29,7 +29,13 @@ mt_real mt__noise_octaves(mt_vec3 dpdx, mt_vec3 dpdy, int max_octaves, int *whol
  * Floor2Int(v) % 2, which overflows beyond 2^31). */
 static inline int mt__floor_odd(mt_real v)
 {
-    mt_real h = mt_floor(v) * (mt_real)0.5;
+    mt_real h;
+    if (v > -(mt_real)1073741824 && v < (mt_real)1073741824) {
+        int i = (int)v; /* floor by truncation: libm's floor is a call without SSE4.1 */
+        if ((mt_real)i > v) i--;
+        return (int)((unsigned)i & 1u);
+    }
+    h = mt_floor(v) * (mt_real)0.5;
     return h != mt_floor(h);
 }
 
