@@ -80,7 +80,7 @@ SHARED_LIB := $(BUILD)/libmateria.so.$(VERSION)
 SONAME     := libmateria.so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 
-.PHONY: all lib tools tests benches check check-full bench demo install clean distclean help
+.PHONY: all lib tools tests benches check check-full other-conformance bench demo install clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -126,8 +126,18 @@ $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(STATIC_LIB)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
 # Every test binary, then the conformance suite; one summary line at the end.
-check: all tests
-	@sh tools/run-checks.sh $(BUILD) $(if $(filter double,$(PRECISION)),double,float) $(TESTS)
+# The suite compares this build with the other precision's (float versus
+# double ULPs); under the sanitizers it runs with fewer samples (--lite): the
+# point there is memory and undefined behaviour, the statistics run unsanitized.
+OTHER_PRECISION := $(if $(filter double,$(PRECISION)),float,double)
+OTHER_CONF      := build/$(OTHER_PRECISION)/bin/materia-conformance
+CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
+
+check: all tests $(if $(SANITIZE),,other-conformance)
+	@CONF_ARGS="$(CONF_ARGS)" sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS)
+
+other-conformance:
+	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= $(OTHER_CONF)
 
 # The conformance suite with far more samples and finer cells (slow).
 check-full: all tests
@@ -165,3 +175,6 @@ help:
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
          $(BENCH_SRC:bench/%.c=$(BUILD)/obj/bench/%.d)
+
+# Keep test, tool and benchmark objects (they are intermediate files to make).
+.SECONDARY:

@@ -47,10 +47,10 @@ static mt_rgb delta_weight(const mt_bxdf *b, mt_vec3 wo)
 
 mt_rgb mt_bxdf_rho_quad(const mt_bxdf *b, mt_vec3 wo, double rel_tol)
 {
-    unsigned char hinted[NPHI][NZ] = {{0}};
+    int hits[NPHI][NZ] = {{0}}, nhits = 0;
     double sum[3] = {0, 0, 0}, scale = 0;
     rho_ctx c;
-    int i, j, k, nhinted = 0, fine;
+    int i, j, k;
     if (b->type & MT_BSDF_SPECULAR) return delta_weight(b, wo);
     c.b = b;
     c.wo = wo;
@@ -66,23 +66,15 @@ mt_rgb mt_bxdf_rho_quad(const mt_bxdf *b, mt_vec3 wo, double rel_tol)
             if (!(pdf > 0) || !(z >= 0)) continue;
             phi = atan2(wi.y, wi.x);
             if (phi < 0) phi += 2 * 3.14159265358979323846;
-            {
-                unsigned char *h = &hinted[(int)(phi / (2 * 3.14159265358979323846) * NPHI) % NPHI]
-                                          [z >= 1 ? NZ - 1 : (int)(z * NZ)];
-                nhinted += !*h;
-                *h = 1;
-            }
+            hits[(int)(phi / (2 * 3.14159265358979323846) * NPHI) % NPHI][z >= 1 ? NZ - 1 : (int)(z * NZ)]++;
+            nhits++;
             scale = fmax(scale, mt_rgb_max(f) * z / pdf / (NHINT * NHINT));
         }
-    /* A lobe the samples spread over many cells is broad: the coarse grid
-     * resolves it. A narrow one (a few cells) gets the fine start. */
-    fine = nhinted <= 8 ? 8 : (nhinted <= 32 ? 4 : (nhinted <= 128 ? 2 : 1));
     for (i = 0; i < NPHI; ++i)
         for (j = 0; j < NZ; ++j) {
             mt_cubature_result r;
             double p0 = 2 * 3.14159265358979323846 * i / NPHI, p1 = 2 * 3.14159265358979323846 * (i + 1) / NPHI;
-            /* 8 x 8 regions of 15 x 15 nodes: about 0.004 rad between nodes */
-            int sub = hinted[i][j] ? fine : 1;
+            int sub = nhits ? mt_cubature_grid((double)hits[i][j] * NPHI * NZ / nhits) : 1;
             if (mt_cubature(rho_integrand, &c, 3, p0, p1, (double)j / NZ, (double)(j + 1) / NZ, sub,
                             sub, rel_tol, rel_tol * fmax(scale, 1e-6) / (NPHI * NZ),
                             225L * 8 * sub * sub, &r,

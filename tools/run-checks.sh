@@ -23,7 +23,8 @@ run() {
 for t in "$@"; do
     run "$(basename "$t")" "$t"
 done
-run materia-conformance "$build/bin/materia-conformance"
+# shellcheck disable=SC2086
+run materia-conformance "$build/bin/materia-conformance" ${CONF_ARGS:-}
 echo "precision $precision: $xfailed expected failures (pbrt-v2 errata), $skipped skipped"
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -35,6 +35,13 @@ MT_API mt_status mt_cubature(mt_cubature_fn f, void *ctx, int ncomp, double x0, 
                              double abs_tol, long max_evals, mt_cubature_result *res,
                              mt_error *err);
 
+/* The initial grid side for a cell in which a sampler put `ratio` times the
+ * average number of samples: 1 for ordinary cells, up to 8 (node spacing of
+ * a few milliradians in the cells used here) for cells holding a sharp peak.
+ * A quadrature only finds mass its nodes see; the sampler says where to look,
+ * the value is still the integral. */
+MT_API int mt_cubature_grid(double ratio);
+
 /* The direction with azimuth phi and cos(theta) = z: dw = dphi dz. */
 MT_API mt_vec3 mt_sphere_direction(double phi, double z);
 

@@ -38,6 +38,7 @@ typedef double mt_real;
 #define mt_fmod fmod
 #define MT_ONE_MINUS_EPSILON 0x1.fffffffffffffp-1
 #define MT_REAL_MAX 1.7976931348623157e308
+#define MT_REAL_EPSILON 2.2204460492503131e-16
 #else
 typedef float mt_real;
 #define MT_REAL_NAME "float"
@@ -59,6 +60,7 @@ typedef float mt_real;
 /* pbrt-v2 montecarlo.h: the largest float below one. */
 #define MT_ONE_MINUS_EPSILON 0x1.fffffep-1f
 #define MT_REAL_MAX 3.40282347e38f
+#define MT_REAL_EPSILON 1.19209290e-7f
 #endif
 
 /* pbrt-v2 (pbrt.h) defines M_PI, INV_PI, ... as float literals, and its

@@ -25,19 +25,25 @@ static mt_rgb fresnelblend_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
     mt_real ci = mt_abs_cos_theta(wi), co = mt_abs_cos_theta(wo), den;
     /* (28/(23 pi)) Rd (1 - Rs) (1 - (1 - cos_i/2)^5) (1 - (1 - cos_o/2)^5),
      * multiplied left to right as in pbrt-v2 */
+    /* the two direction factors in a fixed order (larger cosine first), so
+     * that swapping wo and wi rounds the same way */
+    mt_real fi = 1 - pow5(1 - (mt_real)0.5 * mt_max(ci, co)), fo = 1 - pow5(1 - (mt_real)0.5 * mt_min(ci, co));
     mt_rgb diffuse = mt_rgb_scale(
         mt_rgb_scale(mt_rgb_mul(mt_rgb_scale(fb->Rd, 28 / (23 * MT_PI)),
                                 mt_rgb_sub(mt_rgb_gray(1), fb->Rs)),
-                     1 - pow5(1 - (mt_real)0.5 * ci)),
-        1 - pow5(1 - (mt_real)0.5 * co));
+                     fi),
+        fo);
     mt_vec3 wh = mt_v3_add(wi, wo);
+    mt_real widotwh;
     if (mt_v3_is_zero(wh)) return mt_rgb_black();
+    /* wi.wh = |wo + wi| / 2, symmetric in wo and wi (see microfacet.c) */
+    widotwh = mt_v3_len(wh) / 2;
     wh = mt_v3_normalize(wh);
-    den = 4 * mt_v3_absdot(wi, wh) * mt_max(ci, co);
+    den = 4 * widotwh * mt_max(ci, co);
     /* Both directions grazing (or wi = -wo up to rounding): pbrt-v2 divides by
      * zero; such directions carry no energy (erratum grazing-division). */
     if (den == 0) return diffuse;
-    return mt_rgb_add(diffuse, mt_rgb_scale(schlick(fb, mt_v3_dot(wi, wh)),
+    return mt_rgb_add(diffuse, mt_rgb_scale(schlick(fb, widotwh),
                                             mt_distribution_d(&fb->dist, wh, b->mode) / den));
 }
 

@@ -12,12 +12,13 @@ typedef struct microfacet {
     mt_distribution dist;
 } microfacet;
 
-/* The V-cavity G (Torrance and Sparrow 1967). When wo.wh is 0 pbrt-v2 divides
- * by zero and its min() then yields 1; that value is returned directly. */
-static mt_real vcavity_g(mt_vec3 wo, mt_vec3 wi, mt_vec3 wh)
+/* The V-cavity G (Torrance and Sparrow 1967), given |wo.wh|. When it is 0
+ * pbrt-v2 divides by zero and its min() then yields 1; that value is
+ * returned directly. */
+static mt_real vcavity_g(mt_vec3 wo, mt_vec3 wi, mt_vec3 wh, mt_real wodotwh)
 {
     mt_real ndotwh = mt_abs_cos_theta(wh), ndotwo = mt_abs_cos_theta(wo),
-            ndotwi = mt_abs_cos_theta(wi), wodotwh = mt_v3_absdot(wo, wh);
+            ndotwi = mt_abs_cos_theta(wi);
     if (wodotwh == 0) return 1;
     return mt_min(1, mt_min((2 * ndotwh * ndotwo / wodotwh), (2 * ndotwh * ndotwi / wodotwh)));
 }
@@ -31,17 +32,21 @@ static mt_rgb microfacet_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
     if (costhetai == 0 || costhetao == 0) return mt_rgb_black();
     wh = mt_v3_add(wi, wo);
     if (mt_v3_is_zero(wh)) return mt_rgb_black();
+    /* wi.wh = wo.wh = |wo + wi| / 2 for unit directions. pbrt-v2 takes the dot
+     * products of the rounded wh, which differ between (wo, wi) and (wi, wo)
+     * by up to 1e-5 relative near grazing; the half length is the same value
+     * in exact arithmetic and makes f reciprocal to the last bit. */
+    costhetah = mt_v3_len(wh) / 2;
     wh = mt_v3_normalize(wh);
     /* pbrt-v2 takes Dot(wi, wh), never negative for wh = normalize(wo + wi);
      * corrected mode turns wh to +z first, so a dielectric seen from below
      * uses its inside index (erratum microfacet-fresnel-cosine). */
-    costhetah = (b->mode & MT_FIX_MICROFACET_FRESNEL) ? mt_v3_dot(wi, mt_v3_faceforward(wh, mt_v3(0, 0, 1)))
-                                                      : mt_v3_dot(wi, wh);
+    if ((b->mode & MT_FIX_MICROFACET_FRESNEL) && wh.z < 0) costhetah = -costhetah;
     F = mt_fresnel_evaluate(&m->fresnel, costhetah);
     /* R * D * G * F / (4 cos cos), multiplied in pbrt-v2's order */
     return mt_rgb_divs(mt_rgb_mul(mt_rgb_scale(mt_rgb_scale(m->R, mt_distribution_d(&m->dist, wh,
                                                                                     b->mode)),
-                                               vcavity_g(wo, wi, wh)),
+                                               vcavity_g(wo, wi, wh, mt_fabs(costhetah))),
                                   F),
                        4 * costhetai * costhetao);
 }

@@ -221,6 +221,11 @@ mt_status mt_cubature(mt_cubature_fn f, void *ctx, int ncomp, double x0, double 
     return MT_OK;
 }
 
+int mt_cubature_grid(double ratio)
+{
+    return ratio > 16 ? 8 : ratio > 4 ? 4 : ratio > 1.5 ? 2 : 1;
+}
+
 mt_vec3 mt_sphere_direction(double phi, double z)
 {
     double r = sqrt(fmax(0.0, 1 - z * z));

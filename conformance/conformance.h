@@ -1,0 +1,112 @@
+/*
+ * The conformance suite: what is checked, on what, and how the results are
+ * reported. See docs/CONFORMANCE-SUITE.md for the checks and their bounds.
+ */
+#ifndef MT_CONFORMANCE_H
+#define MT_CONFORMANCE_H
+
+#include "materia.h"
+#include "materia/cubature.h"
+
+/* ---- subjects: a BSDF built in the identity frame at the default point -- */
+typedef struct cf_subject cf_subject;
+typedef mt_status (*cf_build_fn)(const cf_subject *s, mt_arena *a, mt_mode mode, mt_bsdf **out,
+                                 mt_error *err);
+
+enum {
+    CF_FURNACE_LE1 = 1 << 0,   /* rho <= 1 (up to float noise) for every wo */
+    CF_FURNACE_EXACT = 1 << 1, /* rho == expect_rho for every wo */
+    CF_BROKEN = 1 << 2,        /* a deliberately wrong variant: must be caught */
+    CF_NO_CHI2 = 1 << 3,       /* only delta lobes: no density to test */
+    CF_TWO_SIDED = 1 << 4,     /* test wo below the surface too */
+    CF_FURNACE_LE = 1 << 5     /* rho <= expect_rho (a documented bound) */
+};
+
+struct cf_subject {
+    const char *name;
+    const char *family; /* the BxDF (or combination) this exercises */
+    cf_build_fn build;
+    double p[8];
+    unsigned flags;
+    double expect_rho;   /* for CF_FURNACE_EXACT / CF_FURNACE_LE */
+    double lobe_exponent; /* sharpness, for float-noise allowances (0: smooth) */
+};
+
+const cf_subject *cf_subjects(int *count);
+const cf_subject *cf_broken_subjects(int *count);
+
+/* ---- statistics ---------------------------------------------------------- */
+double cf_chi2_pvalue(double chi2, double dof);        /* upper tail */
+double cf_normal_two_sided_z(double alpha);           /* z with P(|Z| > z) = alpha */
+double cf_sidak(double alpha, long tests);             /* per-test significance */
+
+/* ---- run configuration --------------------------------------------------- */
+typedef struct cf_config {
+    int full;          /* --full: many more samples and finer cells */
+    long samples;      /* per (subject, mode, wo) */
+    int nphi, nz;      /* chi-square cells */
+    double alpha;      /* suite-wide significance (0.01) */
+    long tests;        /* statistical tests in the run (for Sidak) */
+    double alpha_test; /* per-test significance */
+    int threads;
+    const char *only;  /* substring filter on subject names */
+} cf_config;
+
+/* ---- results ------------------------------------------------------------- */
+typedef enum { CF_PASS, CF_FAIL, CF_XFAIL, CF_SKIP, CF_INFO } cf_verdict;
+
+typedef struct cf_row {
+    char subject[96];
+    char mode[16];
+    char check[24];
+    char statistic[128];
+    char bound[64];
+    char note[256];
+    cf_verdict verdict;
+} cf_row;
+
+typedef struct cf_rows {
+    cf_row *rows;
+    int n, cap;
+} cf_rows;
+
+void cf_rows_add(cf_rows *r, const cf_row *row);
+void cf_rows_print(const cf_rows *r);
+void cf_rows_free(cf_rows *r);
+
+/* The outcome of one check of a subject in one mode, before reporting. */
+typedef struct cf_result {
+    int ok;
+    double stat;          /* the measured statistic (the worst over wo) */
+    char statistic[128];  /* formatted */
+    char bound[64];
+} cf_result;
+
+/* ---- checks (each returns ok, and fills the formatted statistic) --------- */
+typedef struct cf_sample_report {
+    cf_result identity, chi2, integral, furnace_mc, furnace_bound;
+    double rho_min, rho_max; /* quadrature reflectance over the wo tested */
+    int has_density;
+} cf_sample_report;
+
+/* Sampling, chi-square, pdf integral and furnace for every wo of the set. */
+mt_status cf_sampling_checks(const cf_subject *s, mt_mode mode, const cf_config *cfg,
+                             cf_sample_report *rep, mt_error *err);
+mt_status cf_reciprocity(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
+mt_status cf_helmholtz(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
+mt_status cf_extremes(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
+
+/* Checks that are not per subject. */
+void cf_light_leak(cf_rows *rows);
+void cf_distribution_normalization(cf_rows *rows);
+void cf_extreme_grid(cf_rows *rows);
+void cf_rejects_invalid(cf_rows *rows);
+
+/* The directions wo a subject is tested from. */
+int cf_wo_set(const cf_subject *s, mt_vec3 *wo, int max);
+
+/* Float-versus-double comparison: --dump writes values, --ulps compares. */
+int cf_dump(const char *path);
+void cf_ulps(const char *other_binary, cf_rows *rows);
+
+#endif

@@ -1,0 +1,279 @@
+/*
+ * Checks evaluated pair by pair: reciprocity, Helmholtz reciprocity and the
+ * refraction round trip for specular transmission, the light-leak rule, the
+ * normalization of the microfacet distributions and the rejection of invalid
+ * parameters.
+ */
+#include <float.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include "conformance.h"
+#include "support/check.h"
+
+#if MT_USE_DOUBLE
+#define RECIP_TOL 1e-12
+#define EPS DBL_EPSILON
+#else
+#define RECIP_TOL 1e-6
+#define EPS FLT_EPSILON
+#endif
+
+static mt_vec3 random_dir(mt_rng *r)
+{
+    return mt_uniform_sample_sphere(mt_rng_uniform(r), mt_rng_uniform(r));
+}
+
+static double reldiff(double a, double b)
+{
+    double m = fmax(fabs(a), fabs(b));
+    return m > 0 ? fabs(a - b) / m : 0;
+}
+
+mt_status cf_reciprocity(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err)
+{
+    mt_arena *a = mt_arena_create(0);
+    mt_bsdf *b;
+    mt_rng rng;
+    mt_status st;
+    double worst = 0, ulps = 0;
+    int i, k, nonzero = 0;
+    if (!a) return mt_error_set(err, MT_ERR_NOMEM, "out of memory");
+    if ((st = s->build(s, a, mode, &b, err))) {
+        mt_arena_destroy(a);
+        return st;
+    }
+    mt_rng_seed(&rng, 1234, 5);
+    for (i = 0; i < 20000; ++i) {
+        mt_vec3 wo = random_dir(&rng), wi = random_dir(&rng);
+        mt_rgb f1 = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL), f2 = mt_bsdf_f(b, wi, wo, MT_BSDF_ALL);
+        for (k = 0; k < 3; ++k) {
+            double r = reldiff(f1.c[k], f2.c[k]);
+            nonzero += f1.c[k] != 0;
+            if (r > worst) {
+                worst = r;
+                ulps = t_ulps(f1.c[k], f2.c[k]);
+            }
+        }
+    }
+    mt_arena_destroy(a);
+    res->ok = worst <= RECIP_TOL;
+    res->stat = worst;
+    snprintf(res->statistic, sizeof res->statistic, "max rel %.2g (%.0f ulps) over %d values", worst,
+             ulps, nonzero);
+    snprintf(res->bound, sizeof res->bound, "rel <= %g", RECIP_TOL);
+    return MT_OK;
+}
+
+/* Specular transmission: the round trip T(T(w)) = w, and the symmetry of the
+ * weights in the form the mode uses (pbrt-v2's w(o->i) = w(i->o), or with the
+ * radiance option w(o->i) (eta_i/eta_o)^2 = w(i->o) (eta_o/eta_i)^2). */
+mt_status cf_helmholtz(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err)
+{
+    const unsigned tflags = MT_BSDF_TRANSMISSION | MT_BSDF_SPECULAR;
+    int pass_, i, tested = 0;
+    double worst_w = 0, worst_dir = 0; /* in units of the pair's own tolerance */
+    for (pass_ = 0; pass_ < 2; ++pass_) {
+        mt_mode m = pass_ ? (mode | MT_OPT_RADIANCE_TRANSMISSION) : mode;
+        mt_arena *a = mt_arena_create(0);
+        mt_bsdf *b;
+        mt_rng rng;
+        mt_status st;
+        mt_real eta;
+        if (!a) return mt_error_set(err, MT_ERR_NOMEM, "out of memory");
+        if ((st = s->build(s, a, m, &b, err))) {
+            mt_arena_destroy(a);
+            return st;
+        }
+        eta = mt_bsdf_eta(b);
+        mt_rng_seed(&rng, 99, 1);
+        for (i = 0; i < 4000; ++i) {
+            mt_vec3 wo = random_dir(&rng);
+            mt_bsdf_sample t1 = mt_bsdf_sample_f(b, wo, 0.5f, 0.5f, 0.5f, tflags), t2;
+            double w1, w2, eo, ei, cmin, tol;
+            if (t1.pdf == 0) continue;
+            t2 = mt_bsdf_sample_f(b, t1.wi, 0.5f, 0.5f, 0.5f, tflags);
+            if (t2.pdf == 0) continue;
+            tested++;
+            /* Snell's law is ill-conditioned near grazing refraction: an error
+             * e in cos on one side is e (eta cos / cos')^2 on the other, and
+             * (1 - F) / cos' shares it; the tolerance follows the pair */
+            cmin = fmin(fabs(wo.z), fabs(t1.wi.z));
+            tol = 64 * EPS * fmax(eta * eta, 1 / (eta * eta)) / fmax(cmin * cmin, 1e-12);
+            worst_dir = fmax(worst_dir, mt_v3_len(mt_v3_sub(t2.wi, wo)) / tol);
+            w1 = t1.f.c[0] * fabs(t1.wi.z) / t1.pdf;
+            w2 = t2.f.c[0] * fabs(wo.z) / t2.pdf;
+            eo = wo.z > 0 ? 1 : eta; /* the index on each side */
+            ei = wo.z > 0 ? eta : 1;
+            if (pass_) {
+                w1 *= (ei / eo) * (ei / eo);
+                w2 *= (eo / ei) * (eo / ei);
+            }
+            worst_w = fmax(worst_w, reldiff(w1, w2) / tol);
+        }
+        mt_arena_destroy(a);
+    }
+    res->stat = fmax(worst_w, worst_dir);
+    res->ok = tested > 0 && worst_w <= 1 && worst_dir <= 1;
+    snprintf(res->statistic, sizeof res->statistic,
+             "err/tol: weights %.2g, |T(T(w)) - w| %.2g over %d pairs (both forms)", worst_w, worst_dir,
+             tested);
+    snprintf(res->bound, sizeof res->bound, "<= 1 (64 eps cond.)");
+    return MT_OK;
+}
+
+static void row(cf_rows *rows, const char *subject, const char *mode, const char *check, int ok,
+                const char *bound, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 7, 8)))
+#endif
+    ;
+
+static void row(cf_rows *rows, const char *subject, const char *mode, const char *check, int ok,
+                const char *bound, const char *fmt, ...)
+{
+    cf_row r;
+    va_list ap;
+    memset(&r, 0, sizeof r);
+    snprintf(r.subject, sizeof r.subject, "%s", subject);
+    snprintf(r.mode, sizeof r.mode, "%s", mode);
+    snprintf(r.check, sizeof r.check, "%s", check);
+    snprintf(r.bound, sizeof r.bound, "%s", bound);
+    va_start(ap, fmt);
+    vsnprintf(r.statistic, sizeof r.statistic, fmt, ap);
+    va_end(ap);
+    r.verdict = ok ? CF_PASS : CF_FAIL;
+    cf_rows_add(rows, &r);
+}
+
+/* The light-leak rule, with the geometric normal tilted from the shading
+ * normal: red reflection, green transmission, so f tells which was used. */
+void cf_light_leak(cf_rows *rows)
+{
+    int mi;
+    for (mi = 0; mi < 2; ++mi) {
+        mt_mode mode = mi ? MT_MODE_CORRECTED : MT_MODE_PBRT_V2;
+        mt_arena *a = mt_arena_create(0);
+        mt_diffgeom dg = mt_diffgeom_default();
+        mt_vec3 ng = mt_v3_normalize(mt_v3(0.5f, 0.1f, 0.8f));
+        mt_error err;
+        mt_bsdf *b = mt_bsdf_create(a, mode, &dg, ng, 1, &err);
+        mt_rng rng;
+        int i, bad = 0, both = 0, refl = 0;
+        mt_bsdf_add(b, mt_lambertian_create(a, mode, mt_rgb_make(1, 0, 0), &err), &err);
+        mt_bsdf_add(b, mt_brdf_to_btdf_create(a, mode, mt_lambertian_create(a, mode, mt_rgb_make(0, 1, 0), &err), &err),
+                    &err);
+        mt_rng_seed(&rng, 7, 7);
+        for (i = 0; i < 20000; ++i) {
+            mt_vec3 wo = random_dir(&rng), wi = random_dir(&rng);
+            mt_rgb f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
+            mt_bsdf_sample sm = mt_bsdf_sample_f(b, wo, mt_rng_uniform(&rng), mt_rng_uniform(&rng),
+                                                 mt_rng_uniform(&rng), MT_BSDF_ALL);
+            int reflect = mt_v3_dot(wo, ng) * mt_v3_dot(wi, ng) > 0;
+            refl += reflect;
+            if (f.c[0] != 0 && f.c[1] != 0) both++;
+            /* BRDFs are evaluated with |cos|, so each lobe is non-zero on
+             * both sides: only the geometric normal can zero one of them */
+            if (reflect ? (f.c[1] != 0 || f.c[0] == 0) : (f.c[0] != 0 || f.c[1] == 0)) bad++;
+            if (sm.pdf > 0) {
+                int sr = mt_v3_dot(wo, ng) * mt_v3_dot(sm.wi, ng) > 0;
+                if (sr ? sm.f.c[1] != 0 : sm.f.c[0] != 0) bad++;
+            }
+        }
+        row(rows, "light leak (ng tilted 37 deg)", mt_mode_name(mode), "leak rule", bad == 0 && both == 0,
+            "0 violations", "%d violations in 20000 pairs + samples (%d reflection pairs)", bad, refl);
+        mt_arena_destroy(a);
+    }
+}
+
+typedef struct dn_ctx {
+    mt_distribution d;
+    mt_mode mode;
+} dn_ctx;
+
+static void dn_integrand(void *ctx, double phi, double z, double *out)
+{
+    const dn_ctx *c = ctx;
+    out[0] = mt_distribution_d(&c->d, mt_sphere_direction(phi, z), c->mode) * z;
+}
+
+/* The integral of D(wh) cos(theta_h) over the hemisphere is 1. */
+void cf_distribution_normalization(cf_rows *rows)
+{
+    static const double ex[] = {0.5, 10, 1000, 10000, 10, 1, 1000, 0.5};
+    static const double ey[] = {-1, -1, -1, -1, 10, 100, 10, 0.5};
+    int i;
+    for (i = 0; i < 8; ++i) {
+        dn_ctx c;
+        mt_cubature_result r;
+        char name[96];
+        double e = fmax(ex[i], ey[i]), tol = 3 * e * EPS + 1e-6;
+        c.d = ey[i] < 0 ? mt_blinn((mt_real)ex[i]) : mt_anisotropic((mt_real)ex[i], (mt_real)ey[i]);
+        c.mode = MT_MODE_CORRECTED;
+        mt_cubature(dn_integrand, &c, 1, 0, 6.283185307179586, 0, 1, 8, 64, 1e-9, 1e-10, 20000000, &r, NULL);
+        if (ey[i] < 0)
+            snprintf(name, sizeof name, "blinn D e=%g", ex[i]);
+        else
+            snprintf(name, sizeof name, "anisotropic D %gx%g", ex[i], ey[i]);
+        row(rows, name, "both", "int D cos = 1", fabs(r.value[0] - 1) <= tol, "|int - 1| <= tol",
+            "%.9f (tol %.1g)", r.value[0], tol);
+    }
+}
+
+/* Creation rejects what is not a valid parameter, with a message. */
+void cf_rejects_invalid(cf_rows *rows)
+{
+    mt_arena *a = mt_arena_create(0);
+    mt_error err;
+    mt_diffgeom dg = mt_diffgeom_default();
+    mt_bsdf *b;
+    mt_real nan = (mt_real)NAN, inf = (mt_real)INFINITY;
+    int i, ok = 1;
+    struct {
+        const char *what;
+        mt_bxdf *x;
+    } cases[10];
+    cases[0].what = "lambertian R = NaN";
+    cases[0].x = mt_lambertian_create(a, 0, mt_rgb_make(nan, 0, 0), &err);
+    cases[1].what = "orennayar sigma = inf";
+    cases[1].x = mt_orennayar_create(a, 0, mt_rgb_gray(1), inf, &err);
+    cases[2].what = "specular transmission eta = -1";
+    cases[2].x = mt_specular_transmission_create(a, 0, mt_rgb_gray(1), 1, -1, &err);
+    cases[3].what = "specular transmission eta = 0";
+    cases[3].x = mt_specular_transmission_create(a, 0, mt_rgb_gray(1), 0, 1.5f, &err);
+    cases[4].what = "microfacet exponent -1";
+    cases[4].x = mt_microfacet_create(a, 0, mt_rgb_gray(1), mt_fresnel_noop(), mt_blinn(-1), &err);
+    cases[5].what = "conductor k = -1";
+    cases[5].x = mt_microfacet_create(a, 0, mt_rgb_gray(1), mt_fresnel_conductor(mt_rgb_gray(1), mt_rgb_gray(-1)),
+                                      mt_blinn(10), &err);
+    cases[6].what = "fresnelblend Rs = inf";
+    cases[6].x = mt_fresnelblend_create(a, 0, mt_rgb_gray(1), mt_rgb_gray(inf), mt_blinn(10), &err);
+    cases[7].what = "scaled scale = NaN";
+    cases[7].x = mt_scaled_bxdf_create(a, 0, mt_lambertian_create(a, 0, mt_rgb_gray(1), &err), mt_rgb_gray(nan), &err);
+    cases[8].what = "anisotropic ex = -2";
+    cases[8].x = mt_fresnelblend_create(a, 0, mt_rgb_gray(1), mt_rgb_gray(1), mt_anisotropic(-2, 1), &err);
+    cases[9].what = "specular reflection dielectric eta_t = NaN";
+    cases[9].x = mt_specular_reflection_create(a, 0, mt_rgb_gray(1), mt_fresnel_dielectric(1, nan), &err);
+    for (i = 0; i < 10; ++i) {
+        mt_error_clear(&err);
+        if (cases[i].x) ok = 0;
+    }
+    row(rows, "invalid parameters", "both", "rejected", ok, "all 10 NULL", "%s", ok ? "10 of 10 rejected" : "accepted");
+    /* every creator's message names its parameter */
+    mt_error_clear(&err);
+    mt_orennayar_create(a, 0, mt_rgb_gray(1), nan, &err);
+    row(rows, "invalid parameters", "both", "message", err.status == MT_ERR_INVALID && !strcmp(err.param, "sigma"),
+        "names the parameter", "\"%s\" (param %s)", err.message, err.param);
+    /* a ninth BxDF is an error, never an overflow */
+    b = mt_bsdf_create(a, 0, &dg, dg.n, 1, &err);
+    for (i = 0; i < 8; ++i) mt_bsdf_add(b, mt_lambertian_create(a, 0, mt_rgb_gray(0.1f), &err), &err);
+    mt_error_clear(&err);
+    row(rows, "bsdf with 9 BxDFs", "both", "limit",
+        mt_bsdf_add(b, mt_lambertian_create(a, 0, mt_rgb_gray(0.1f), &err), &err) == MT_ERR_LIMIT &&
+            mt_bsdf_count(b) == 8,
+        "MT_ERR_LIMIT, 8 kept", "%s", err.message);
+    dg.n = mt_v3(nan, 0, 1);
+    row(rows, "bsdf with NaN normal", "both", "rejected", mt_bsdf_create(a, 0, &dg, mt_v3(0, 0, 1), 1, &err) == NULL,
+        "NULL", "%s", err.message);
+    mt_arena_destroy(a);
+}
