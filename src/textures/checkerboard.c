@@ -84,26 +84,16 @@ static mt_real weight(const mt_texture *t, const mt_diffgeom *dg)
     return c->dim == 2 ? weight2d(c, dg) : weight3d(c, dg);
 }
 
-static mt_real checker_float(const mt_texture *t, const mt_diffgeom *dg)
-{
-    const mt__pair_tex *p = (const mt__pair_tex *)t;
-    return mt__tex_pick_float(weight(t, dg), p->tex1, p->tex2, dg);
-}
-
-static mt_rgb checker_rgb(const mt_texture *t, const mt_diffgeom *dg)
-{
-    const mt__pair_tex *p = (const mt__pair_tex *)t;
-    return mt__tex_pick_rgb(weight(t, dg), p->tex1, p->tex2, dg);
-}
-
-static const mt_texture_ops checker_ops = {"checkerboard", checker_float, checker_rgb,
+static const mt_texture_ops checker_ops = {"checkerboard", mt__pair_pick_float, mt__pair_pick_rgb,
                                            mt__pair_finalize};
 
 static checker *checker_alloc(int is_float, mt_texture *tex1, mt_texture *tex2, mt_mode mode,
                               mt_error *err)
 {
-    return mt__pair_alloc(sizeof(checker), &checker_ops, is_float, tex1, "tex1", tex2, "tex2",
-                          mode, err);
+    checker *c = mt__pair_alloc(sizeof(checker), &checker_ops, is_float, tex1, "tex1", tex2,
+                                "tex2", mode, err);
+    if (c) c->pair.weight = weight;
+    return c;
 }
 
 mt_texture *mt__tex_checker2d(int is_float, const mt_map2d *map, mt_texture *tex1,

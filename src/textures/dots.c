@@ -38,19 +38,8 @@ static mt_real inside(const mt_texture *t, const mt_diffgeom *dg)
     return 0;
 }
 
-static mt_real dots_float(const mt_texture *t, const mt_diffgeom *dg)
-{
-    const mt__pair_tex *p = (const mt__pair_tex *)t;
-    return mt__tex_pick_float(inside(t, dg), p->tex1, p->tex2, dg);
-}
-
-static mt_rgb dots_rgb(const mt_texture *t, const mt_diffgeom *dg)
-{
-    const mt__pair_tex *p = (const mt__pair_tex *)t;
-    return mt__tex_pick_rgb(inside(t, dg), p->tex1, p->tex2, dg);
-}
-
-static const mt_texture_ops dots_ops = {"dots", dots_float, dots_rgb, mt__pair_finalize};
+static const mt_texture_ops dots_ops = {"dots", mt__pair_pick_float, mt__pair_pick_rgb,
+                                        mt__pair_finalize};
 
 mt_texture *mt__tex_dots(int is_float, const mt_map2d *map, mt_texture *inside_tex,
                          mt_texture *outside_tex, mt_mode mode, mt_error *err)
@@ -64,6 +53,7 @@ mt_texture *mt__tex_dots(int is_float, const mt_map2d *map, mt_texture *inside_t
         d = mt__pair_alloc(sizeof *d, &dots_ops, is_float, inside_tex, "inside", outside_tex,
                            "outside", mode, err);
     if (!d) return NULL;
+    d->pair.weight = inside;
     d->map = *map;
     return &d->pair.base;
 }

@@ -3,18 +3,11 @@
 #include "textures/noise.h"
 #include "textures/tex.h"
 
-static mt_real fbm_float(const mt_texture *t, const mt_diffgeom *dg)
-{
-    const mt__noise_tex *n = (const mt__noise_tex *)t;
-    mt_vec3 dpdx, dpdy, p = mt__map3d_apply(&n->map, dg, &dpdx, &dpdy);
-    return mt__fbm(p, dpdx, dpdy, n->omega, n->octaves);
-}
-
-static const mt_texture_ops fbm_ops = {"fbm", fbm_float, mt__tex_gray_rgb, NULL};
+static const mt_texture_ops fbm_ops = {"fbm", mt__noise_tex_float, mt__tex_gray_rgb, NULL};
 
 mt_texture *mt__tex_fbm(int is_float, const mt_map3d *map, int octaves, mt_real roughness,
                         mt_mode mode, mt_error *err)
 {
     return mt__noise_alloc(sizeof(mt__noise_tex), &fbm_ops, is_float, map, octaves, roughness,
-                           mode, err);
+                           mt__fbm, mode, err);
 }

@@ -77,7 +77,7 @@ mt_texture *mt__tex_marble(const mt_map3d *map, int octaves, mt_real roughness, 
     if (!mt__tex_check_real(scale, "scale", "marble", err) ||
         !mt__tex_check_real(variation, "variation", "marble", err))
         return NULL;
-    m = mt__noise_alloc(sizeof *m, &marble_ops, 0, map, octaves, roughness, mode, err);
+    m = mt__noise_alloc(sizeof *m, &marble_ops, 0, map, octaves, roughness, mt__fbm, mode, err);
     if (!m) return NULL;
     m->scale = scale;
     m->variation = variation;

@@ -219,24 +219,30 @@ static mt_status octaves(const mt_texparams *tp, int *oct, mt_real *rough, mt_er
     return st ? st : mt_texparams_float(tp, "roughness", (mt_real)0.5, rough, err);
 }
 
-static mt_texture *create_fbm(int is_float, const mt_transform *tex2world,
-                              const mt_texparams *tp, mt_error *err)
+typedef mt_texture *(*octave_ctor)(int is_float, const mt_map3d *map, int octaves,
+                                   mt_real roughness, mt_mode mode, mt_error *err);
+
+/* fbm and wrinkled: a 3D mapping, "octaves" and "roughness". */
+static mt_texture *create_octaves(octave_ctor ctor, int is_float, const mt_transform *tex2world,
+                                  const mt_texparams *tp, mt_error *err)
 {
     mt_map3d m = mt__map3d(tex2world, tp->mode);
     mt_real rough;
     int oct;
     if (octaves(tp, &oct, &rough, err)) return NULL;
-    return mt__tex_fbm(is_float, &m, oct, rough, tp->mode, err);
+    return ctor(is_float, &m, oct, rough, tp->mode, err);
+}
+
+static mt_texture *create_fbm(int is_float, const mt_transform *tex2world,
+                              const mt_texparams *tp, mt_error *err)
+{
+    return create_octaves(mt__tex_fbm, is_float, tex2world, tp, err);
 }
 
 static mt_texture *create_wrinkled(int is_float, const mt_transform *tex2world,
                                    const mt_texparams *tp, mt_error *err)
 {
-    mt_map3d m = mt__map3d(tex2world, tp->mode);
-    mt_real rough;
-    int oct;
-    if (octaves(tp, &oct, &rough, err)) return NULL;
-    return mt__tex_wrinkled(is_float, &m, oct, rough, tp->mode, err);
+    return create_octaves(mt__tex_wrinkled, is_float, tex2world, tp, err);
 }
 
 static mt_texture *create_windy(int is_float, const mt_transform *tex2world,

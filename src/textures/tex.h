@@ -91,22 +91,35 @@ mt_rgb mt__tex_gray_rgb(const mt_texture *t, const mt_diffgeom *dg);
 typedef struct mt__pair_tex {
     mt_texture base;
     mt_texture *tex1, *tex2;
+    /* checkerboard, dots: tex2's weight at dg (see mt__tex_pick_float) */
+    mt_real (*weight)(const mt_texture *t, const mt_diffgeom *dg);
 } mt__pair_tex;
 /* Checks and retains both children; the caller fills the rest. */
 void *mt__pair_alloc(size_t size, const mt_texture_ops *ops, int is_float, mt_texture *tex1,
                      const char *name1, mt_texture *tex2, const char *name2, mt_mode mode,
                      mt_error *err);
 void mt__pair_finalize(mt_texture *t);
+/* eval_float and eval_rgb of the classes with a weight: tex1, tex2 or the blend. */
+mt_real mt__pair_pick_float(const mt_texture *t, const mt_diffgeom *dg);
+mt_rgb mt__pair_pick_rgb(const mt_texture *t, const mt_diffgeom *dg);
+
+/* noise.h's FBm and Turbulence share this signature. */
+typedef mt_real (*mt__octave_fn)(mt_vec3 p, mt_vec3 dpdx, mt_vec3 dpdy, mt_real omega,
+                                 int max_octaves);
 
 typedef struct mt__noise_tex {
     mt_texture base;
     mt_map3d map;
     int octaves;
-    mt_real omega; /* pbrt-v2's "roughness" */
+    mt_real omega;     /* pbrt-v2's "roughness" */
+    mt__octave_fn sum; /* fbm: FBm, wrinkled: Turbulence */
 } mt__noise_tex;
 /* Checks octaves and roughness (mt__tex_check_octaves) and fills the layout. */
 void *mt__noise_alloc(size_t size, const mt_texture_ops *ops, int is_float, const mt_map3d *map,
-                      int octaves, mt_real roughness, mt_mode mode, mt_error *err);
+                      int octaves, mt_real roughness, mt__octave_fn sum, mt_mode mode,
+                      mt_error *err);
+/* eval_float of fbm and wrinkled: sum at the 3D-mapped point and footprint. */
+mt_real mt__noise_tex_float(const mt_texture *t, const mt_diffgeom *dg);
 
 /* --- constructors, one per pbrt-v2 class (the variant given by is_float) --- */
 /* value: v.c[0] for the float variant. */

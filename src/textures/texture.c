@@ -254,8 +254,21 @@ void mt__pair_finalize(mt_texture *t)
     mt_texture_release(p->tex2);
 }
 
+mt_real mt__pair_pick_float(const mt_texture *t, const mt_diffgeom *dg)
+{
+    const mt__pair_tex *p = (const mt__pair_tex *)t;
+    return mt__tex_pick_float(p->weight(t, dg), p->tex1, p->tex2, dg);
+}
+
+mt_rgb mt__pair_pick_rgb(const mt_texture *t, const mt_diffgeom *dg)
+{
+    const mt__pair_tex *p = (const mt__pair_tex *)t;
+    return mt__tex_pick_rgb(p->weight(t, dg), p->tex1, p->tex2, dg);
+}
+
 void *mt__noise_alloc(size_t size, const mt_texture_ops *ops, int is_float, const mt_map3d *map,
-                      int octaves, mt_real roughness, mt_mode mode, mt_error *err)
+                      int octaves, mt_real roughness, mt__octave_fn sum, mt_mode mode,
+                      mt_error *err)
 {
     mt__noise_tex *n;
     if (!mt__tex_check_octaves(octaves, roughness, ops->name, err)) return NULL;
@@ -264,5 +277,13 @@ void *mt__noise_alloc(size_t size, const mt_texture_ops *ops, int is_float, cons
     n->map = *map;
     n->octaves = octaves;
     n->omega = roughness;
+    n->sum = sum;
     return n;
+}
+
+mt_real mt__noise_tex_float(const mt_texture *t, const mt_diffgeom *dg)
+{
+    const mt__noise_tex *n = (const mt__noise_tex *)t;
+    mt_vec3 dpdx, dpdy, p = mt__map3d_apply(&n->map, dg, &dpdx, &dpdy);
+    return n->sum(p, dpdx, dpdy, n->omega, n->octaves);
 }

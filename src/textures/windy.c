@@ -20,5 +20,5 @@ static const mt_texture_ops windy_ops = {"windy", windy_float, mt__tex_gray_rgb,
 mt_texture *mt__tex_windy(int is_float, const mt_map3d *map, mt_mode mode, mt_error *err)
 {
     return mt__noise_alloc(sizeof(mt__noise_tex), &windy_ops, is_float, map, 6, (mt_real)0.5,
-                           mode, err);
+                           mt__fbm, mode, err);
 }

@@ -3,18 +3,12 @@
 #include "textures/noise.h"
 #include "textures/tex.h"
 
-static mt_real wrinkled_float(const mt_texture *t, const mt_diffgeom *dg)
-{
-    const mt__noise_tex *n = (const mt__noise_tex *)t;
-    mt_vec3 dpdx, dpdy, p = mt__map3d_apply(&n->map, dg, &dpdx, &dpdy);
-    return mt__turbulence(p, dpdx, dpdy, n->omega, n->octaves);
-}
-
-static const mt_texture_ops wrinkled_ops = {"wrinkled", wrinkled_float, mt__tex_gray_rgb, NULL};
+static const mt_texture_ops wrinkled_ops = {"wrinkled", mt__noise_tex_float, mt__tex_gray_rgb,
+                                            NULL};
 
 mt_texture *mt__tex_wrinkled(int is_float, const mt_map3d *map, int octaves, mt_real roughness,
                              mt_mode mode, mt_error *err)
 {
     return mt__noise_alloc(sizeof(mt__noise_tex), &wrinkled_ops, is_float, map, octaves,
-                           roughness, mode, err);
+                           roughness, mt__turbulence, mode, err);
 }

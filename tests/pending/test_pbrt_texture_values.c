@@ -91,12 +91,7 @@ static void check_row(config *c, char **f)
     dg.p = mt_v3(x[1], x[2], x[3]);
     dg.u = x[4];
     dg.v = x[5];
-    dg.dudx = x[6];
-    dg.dudy = x[7];
-    dg.dvdx = x[8];
-    dg.dvdy = x[9];
-    dg.dpdx = mt_v3(x[10], x[11], x[12]);
-    dg.dpdy = mt_v3(x[13], x[14], x[15]);
+    tu_differentials(&dg, x + 6);
     v = mt_texture_eval_rgb(c->t, &dg);
     if (c->is_float) v.c[0] = mt_texture_eval_float(c->t, &dg);
     for (k = 0; k < n; ++k) {

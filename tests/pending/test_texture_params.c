@@ -38,17 +38,23 @@ static mt_paramset *params(const char *text)
 static mt_texture_table *table;
 static mt_error err;
 
+static mt_texparams tparams(const mt_paramset *geom, const mt_paramset *mat, mt_mode mode)
+{
+    mt_texparams tp;
+    tp.geom = geom;
+    tp.material = mat;
+    tp.textures = table;
+    tp.mode = mode;
+    return tp;
+}
+
 /* Creates class from material parameters mat (and geometry ones geom). */
 static mt_texture *make(const char *cls, int is_float, const char *geom, const char *mat,
                         mt_mode mode, const mt_transform *xf)
 {
     mt_paramset *g = geom ? params(geom) : NULL, *m = params(mat);
-    mt_texparams tp;
+    mt_texparams tp = tparams(g, m, mode);
     mt_texture *t;
-    tp.geom = g;
-    tp.material = m;
-    tp.textures = table;
-    tp.mode = mode;
     mt_error_clear(&err);
     t = mt_texture_create(cls, is_float, xf, &tp, &err);
     mt_paramset_destroy(g);
@@ -202,10 +208,7 @@ static void test_lookup_rules(void)
             "texparams: unknown wrap", "%s", err.message);
     /* the optional float texture (bumpmap) */
     m = params("\"texture bumpmap\" \"a\" \"float unused\" 1");
-    tp.geom = NULL;
-    tp.material = m;
-    tp.textures = table;
-    tp.mode = MT_MODE_PBRT_V2;
+    tp = tparams(NULL, m, MT_MODE_PBRT_V2);
     t = NULL;
     t_check(mt_texparams_float_texture_opt(&tp, "bumpmap", &t, &err) == MT_OK && t == a,
             "texparams: an optional float texture present", "-");
@@ -236,12 +239,8 @@ static void count_unused(void *ctx, const char *file, int line, const char *mess
 static void test_used_marks(void)
 {
     mt_paramset *g = params("\"float uscale\" 2"), *m = params("\"float uscale\" 3 \"float foo\" 1");
-    mt_texparams tp;
+    mt_texparams tp = tparams(g, m, MT_MODE_PBRT_V2);
     mt_texture *t;
-    tp.geom = g;
-    tp.material = m;
-    tp.textures = table;
-    tp.mode = MT_MODE_PBRT_V2;
     t = mt_texture_create("checkerboard", 1, NULL, &tp, &err);
     unused_count = 0;
     mt_paramset_report_unused(m, count_unused, NULL);

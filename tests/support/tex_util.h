@@ -38,6 +38,18 @@ static inline mt_real tu_float(double x)
     return f;
 }
 
+/* The screen-space differentials as the reference files order them:
+ * dudx, dudy, dvdx, dvdy, dpdx (3), dpdy (3). */
+static inline void tu_differentials(mt_diffgeom *dg, const mt_real *x)
+{
+    dg->dudx = x[0];
+    dg->dudy = x[1];
+    dg->dvdx = x[2];
+    dg->dvdy = x[3];
+    dg->dpdx = mt_v3(x[4], x[5], x[6]);
+    dg->dpdy = mt_v3(x[7], x[8], x[9]);
+}
+
 /* Splits a CSV line in place; returns the number of fields (at most max). */
 static inline int tu_split(char *line, char **field, int max)
 {
