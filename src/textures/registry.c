@@ -24,7 +24,7 @@ static mt_texture *child(const mt_texparams *tp, int is_float, const char *name,
 static mt_status value(const mt_texparams *tp, int is_float, const char *name, mt_real def,
                        mt_rgb *out, mt_error *err)
 {
-    mt_real v;
+    mt_real v = def;
     mt_status st;
     if (!is_float) return mt_texparams_rgb(tp, name, mt_rgb_gray(def), out, err);
     st = mt_texparams_float(tp, name, def, &v, err);
@@ -52,13 +52,14 @@ static mt_status mapping2d(const mt_transform *tex2world, const mt_texparams *tp
     static const char *const kinds[] = {"uv", "spherical", "cylindrical", "planar", NULL};
     mt_real su, sv, du, dv;
     mt_vec3 v1, v2;
+    mt_status st;
     switch (choice(tp, "mapping", "uv", kinds, cls, err)) {
     case 0:
-        if (mt_texparams_float(tp, "uscale", 1, &su, err) ||
-            mt_texparams_float(tp, "vscale", 1, &sv, err) ||
-            mt_texparams_float(tp, "udelta", 0, &du, err) ||
-            mt_texparams_float(tp, "vdelta", 0, &dv, err))
-            return err ? err->status : MT_ERR_INVALID;
+        if ((st = mt_texparams_float(tp, "uscale", 1, &su, err)) ||
+            (st = mt_texparams_float(tp, "vscale", 1, &sv, err)) ||
+            (st = mt_texparams_float(tp, "udelta", 0, &du, err)) ||
+            (st = mt_texparams_float(tp, "vdelta", 0, &dv, err)))
+            return st;
         *m = mt__map2d_uv(su, sv, du, dv);
         break;
     case 1:
@@ -68,11 +69,11 @@ static mt_status mapping2d(const mt_transform *tex2world, const mt_texparams *tp
         *m = mt__map2d_cylindrical(tex2world, tp->mode);
         break;
     case 3:
-        if (mt_texparams_vector(tp, "v1", mt_v3(1, 0, 0), &v1, err) ||
-            mt_texparams_vector(tp, "v2", mt_v3(0, 1, 0), &v2, err) ||
-            mt_texparams_float(tp, "udelta", 0, &du, err) ||
-            mt_texparams_float(tp, "vdelta", 0, &dv, err))
-            return err ? err->status : MT_ERR_INVALID;
+        if ((st = mt_texparams_vector(tp, "v1", mt_v3(1, 0, 0), &v1, err)) ||
+            (st = mt_texparams_vector(tp, "v2", mt_v3(0, 1, 0), &v2, err)) ||
+            (st = mt_texparams_float(tp, "udelta", 0, &du, err)) ||
+            (st = mt_texparams_float(tp, "vdelta", 0, &dv, err)))
+            return st;
         *m = mt__map2d_planar(v1, v2, du, dv);
         break;
     default:
