@@ -99,11 +99,15 @@ mt_status cf_extremes(const cf_subject *s, mt_mode mode, cf_result *res, mt_erro
 /* Checks that are not per subject. */
 void cf_light_leak(cf_rows *rows);
 void cf_distribution_normalization(cf_rows *rows);
+void cf_furnace_table(cf_rows *rows);
 void cf_extreme_grid(cf_rows *rows);
 void cf_rejects_invalid(cf_rows *rows);
 
 /* The directions wo a subject is tested from. */
 int cf_wo_set(const cf_subject *s, mt_vec3 *wo, int max);
+
+/* The measured size of each BxDF/BSDF erratum (--errata). */
+int cf_errata_report(void);
 
 /* Float-versus-double comparison: --dump writes values, --ulps compares. */
 int cf_dump(const char *path);

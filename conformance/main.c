@@ -7,6 +7,7 @@
  * measured deviation; otherwise it is a failure.
  *
  *   materia-conformance [--full] [--only TEXT] [--threads N]
+ *   materia-conformance --errata             the measured size of each erratum
  *   materia-conformance --dump FILE          values for the float/double comparison
  *   materia-conformance --ulps OTHER_BINARY  compare with the other precision
  */
@@ -234,6 +235,8 @@ int main(int argc, char **argv)
             cfg.only = argv[++i];
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
             cfg.threads = atoi(argv[++i]) < 1 ? 1 : (atoi(argv[i]) > 16 ? 16 : atoi(argv[i]));
+        else if (!strcmp(argv[i], "--errata"))
+            return cf_errata_report();
         else if (!strcmp(argv[i], "--dump") && i + 1 < argc)
             return cf_dump(argv[++i]) ? 1 : 0;
         else if (!strcmp(argv[i], "--ulps") && i + 1 < argc)
@@ -272,9 +275,10 @@ int main(int argc, char **argv)
     nthreads = cfg.threads < p.njobs ? cfg.threads : (p.njobs > 0 ? p.njobs : 1);
     for (t = 0; t < nthreads; ++t) pthread_create(&th[t], NULL, worker, &p);
     /* the pair-by-pair checks run here meanwhile */
-    if (!cfg.only) {
+    if (!cfg.only || !strcmp(cfg.only, "pointwise")) { /* --only pointwise: these alone */
         cf_light_leak(&extra);
         cf_distribution_normalization(&extra);
+        cf_furnace_table(&extra);
         cf_rejects_invalid(&extra);
         cf_extreme_grid(&extra);
     }

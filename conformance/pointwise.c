@@ -277,3 +277,61 @@ void cf_rejects_invalid(cf_rows *rows)
         "NULL", "%s", err.message);
     mt_arena_destroy(a);
 }
+
+/* CONFORMANCE.md's furnace table, reproduced by quadrature: Blinn with the
+ * V-cavity G at normal incidence (about 0.44 for e = 0.5, 0.90-0.99 for
+ * e = 10, 1.000 from e = 50), and the maxima over incidence of Oren-Nayar
+ * (<= 1.02; pbrt-v2's qualitative model gains energy at grazing) and of
+ * FresnelBlend (<= 0.98). */
+void cf_furnace_table(cf_rows *rows)
+{
+    static const struct {
+        double e, lo, hi;
+    } blinn[] = {{0.5, 0.43, 0.45}, {10, 0.90, 0.99}, {50, 0.999, 1.001}, {1000, 0.999, 1.001}, {10000, 0.999, 1.001}};
+    static const double sigmas[] = {5, 10, 15, 20};
+    mt_arena *a = mt_arena_create(0);
+    mt_error err;
+    char name[96];
+    size_t i;
+    int k;
+    for (i = 0; i < sizeof blinn / sizeof blinn[0]; ++i) {
+        mt_bxdf *b = mt_microfacet_create(a, MT_MODE_CORRECTED, mt_rgb_gray(1), mt_fresnel_noop(),
+                                          mt_blinn((mt_real)blinn[i].e), &err);
+        double r = mt_bxdf_rho_quad(b, mt_v3(0, 0, 1), 1e-7).c[0];
+        snprintf(name, sizeof name, "furnace table: blinn e=%g at normal", blinn[i].e);
+        row(rows, name, "both", "furnace", r >= blinn[i].lo && r <= blinn[i].hi, "CONFORMANCE.md [Q]",
+            "rho %.6f (expected %g..%g)", r, blinn[i].lo, blinn[i].hi);
+    }
+    for (i = 0; i < sizeof sigmas / sizeof sigmas[0]; ++i) {
+        mt_bxdf *b = mt_orennayar_create(a, MT_MODE_CORRECTED, mt_rgb_gray(1), (mt_real)sigmas[i], &err);
+        double best = 0, at = 0;
+        for (k = 0; k <= 60; ++k) {
+            double c = pow(10.0, -3.0 * k / 60), s = sqrt(1 - c * c), r;
+            r = mt_bxdf_rho_quad(b, mt_v3((mt_real)s, 0, (mt_real)c), 1e-7).c[0];
+            if (r > best) {
+                best = r;
+                at = c;
+            }
+        }
+        snprintf(name, sizeof name, "furnace table: orennayar sigma=%g, max over incidence", sigmas[i]);
+        row(rows, name, "both", "furnace", best <= 1.02, "rho <= 1.02", "max rho %.6f (gain %.2f%%) at cos %.3g", best,
+            100 * (best - 1), at);
+    }
+    for (k = 0; k < 2; ++k) {
+        mt_real rs = k ? 0.5f : 0.04f;
+        mt_bxdf *b = mt_fresnelblend_create(a, MT_MODE_CORRECTED, mt_rgb_gray(1), mt_rgb_gray(rs), mt_anisotropic(10, 10), &err);
+        double best = 0, at = 0;
+        int j;
+        for (j = 0; j <= 40; ++j) {
+            double c = pow(10.0, -3.0 * j / 40), s = sqrt(1 - c * c), r;
+            r = mt_bxdf_rho_quad(b, mt_v3((mt_real)s, 0, (mt_real)c), 1e-7).c[0];
+            if (r > best) {
+                best = r;
+                at = c;
+            }
+        }
+        snprintf(name, sizeof name, "furnace table: fresnelblend Rd=1 Rs=%g, max over incidence", (double)rs);
+        row(rows, name, "both", "furnace", best <= 0.98, "rho <= 0.98", "max rho %.6f at cos %.3g", best, at);
+    }
+    mt_arena_destroy(a);
+}

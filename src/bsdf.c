@@ -107,13 +107,16 @@ static unsigned leak_flags(const mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, unsigned fl
                         : flags & ~(unsigned)MT_BSDF_REFLECTION;
 }
 
-static mt_rgb sum_f(const mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, unsigned flags)
+/* The sum of f over the components that match flags. `known`, when not NULL,
+ * is a component whose f(wo, wi) is already known to be known_f. */
+static mt_rgb sum_f(const mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, unsigned flags, const mt_bxdf *known,
+                    mt_rgb known_f)
 {
     mt_rgb f = mt_rgb_black();
     int i;
     for (i = 0; i < b->n; ++i)
         if (mt_type_matches(b->bxdfs[i]->type, flags))
-            f = mt_rgb_add(f, b->bxdfs[i]->ops->f(b->bxdfs[i], wo, wi));
+            f = mt_rgb_add(f, b->bxdfs[i] == known ? known_f : b->bxdfs[i]->ops->f(b->bxdfs[i], wo, wi));
     return f;
 }
 
@@ -122,7 +125,8 @@ mt_rgb mt_bsdf_f(const mt_bsdf *b, mt_vec3 woW, mt_vec3 wiW, unsigned flags)
     if (!mt__admit_dir(&woW) || !mt__admit_dir(&wiW)) return mt_rgb_black();
     flags = leak_flags(b, woW, wiW, flags);
     if (!flags) return mt_rgb_black();
-    return sum_f(b, mt_frame_to_local(&b->frame, woW), mt_frame_to_local(&b->frame, wiW), flags);
+    return sum_f(b, mt_frame_to_local(&b->frame, woW), mt_frame_to_local(&b->frame, wiW), flags, NULL,
+                 mt_rgb_black());
 }
 
 static mt_bsdf_sample failed_sample(void)
@@ -139,24 +143,20 @@ mt_bsdf_sample mt_bsdf_sample_f(const mt_bsdf *b, mt_vec3 woW, mt_real uc, mt_re
                                 mt_real u2, unsigned flags)
 {
     mt_bsdf_sample s = failed_sample();
-    int matching, which, count, i;
-    const mt_bxdf *bxdf = NULL;
+    int matching, which, i;
+    const mt_bxdf *bxdf, *match[MT_MAX_BXDFS];
     mt_vec3 wo, wi;
     if (!mt__admit_dir(&woW) || !(uc >= 0 && uc < 1) || !(u1 >= 0 && u1 < 1) ||
         !(u2 >= 0 && u2 < 1))
         return s;
-    matching = mt_bsdf_num_components(b, flags);
+    /* pbrt-v2: which = min(Floor2Int(u * matching), matching - 1), then the
+     * which-th matching component; u >= 0, so truncation is the floor */
+    for (i = matching = 0; i < b->n; ++i)
+        if (mt_type_matches(b->bxdfs[i]->type, flags)) match[matching++] = b->bxdfs[i];
     if (matching == 0) return s;
-    /* pbrt-v2: min(Floor2Int(u * matching), matching - 1), then the
-     * which-th matching component. */
-    which = (int)mt_floor(uc * matching);
+    which = (int)(uc * matching);
     if (which > matching - 1) which = matching - 1;
-    count = which;
-    for (i = 0; i < b->n; ++i)
-        if (mt_type_matches(b->bxdfs[i]->type, flags) && count-- == 0) {
-            bxdf = b->bxdfs[i];
-            break;
-        }
+    bxdf = match[which];
     wo = mt_frame_to_local(&b->frame, woW);
     s.pdf = 0;
     s.f = bxdf->ops->sample_f(bxdf, wo, &wi, u1, u2, &s.pdf);
@@ -164,13 +164,18 @@ mt_bsdf_sample mt_bsdf_sample_f(const mt_bsdf *b, mt_vec3 woW, mt_real uc, mt_re
     s.type = bxdf->type;
     s.wi = mt_frame_to_world(&b->frame, wi);
     if (!(bxdf->type & MT_BSDF_SPECULAR) && matching > 1)
-        for (i = 0; i < b->n; ++i)
-            if (b->bxdfs[i] != bxdf && mt_type_matches(b->bxdfs[i]->type, flags))
-                s.pdf += b->bxdfs[i]->ops->pdf(b->bxdfs[i], wo, wi);
+        for (i = 0; i < matching; ++i)
+            if (match[i] != bxdf) s.pdf += match[i]->ops->pdf(match[i], wo, wi);
     if (matching > 1) s.pdf /= matching;
     if (!(bxdf->type & MT_BSDF_SPECULAR)) {
+        /* f summed over the components the light-leak rule admits. The
+         * sampled component's Sample_f already returned its f(wo, wi) (the
+         * BxDF contract) when wi lies on its own side; otherwise (pbrt-v2's
+         * glossy samples below the horizon return 0) it is evaluated again,
+         * as pbrt-v2 does. */
         unsigned fl = leak_flags(b, woW, s.wi, flags);
-        s.f = fl ? sum_f(b, wo, wi, fl) : mt_rgb_black();
+        int own_side = mt_same_hemisphere(wo, wi) == !(bxdf->type & MT_BSDF_TRANSMISSION);
+        s.f = fl ? sum_f(b, wo, wi, fl, own_side ? bxdf : NULL, s.f) : mt_rgb_black();
     }
     return s;
 }

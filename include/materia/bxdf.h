@@ -134,7 +134,9 @@ MT_API mt_bxdf *mt_brdf_to_btdf_create(mt_arena *a, mt_mode mode, mt_bxdf *brdf,
  * of other lengths are normalized first. */
 MT_API mt_rgb mt_bxdf_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi);
 /* Samples *wi for wo from (u1, u2) in [0,1)^2; returns f(wo, *wi) and sets
- * *pdf (0 when no direction could be sampled). */
+ * *pdf (0 when no direction could be sampled). Every kind keeps this
+ * contract when *wi lies on its own side (wo's for reflection, the other for
+ * transmission): the BSDF relies on it. */
 MT_API mt_rgb mt_bxdf_sample_f(const mt_bxdf *b, mt_vec3 wo, mt_real u1, mt_real u2,
                                mt_vec3 *wi, mt_real *pdf);
 MT_API mt_real mt_bxdf_pdf(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi);

@@ -12,7 +12,14 @@
  * parameters can be reported as pbrt-v2 reports them. A lookup of a name that
  * exists with another type, or with the wrong number of values, is an error
  * (pbrt-v2 silently ignores both): the message names the file, line and
- * parameter.
+ * parameter. Code that accepts either of two types -- pbrt-v2's
+ * TextureParams takes a "texture" or a value for the same name -- looks at
+ * mt_paramset_find(ps, name)->type first and then calls the matching lookup.
+ *
+ * The declarations a scene may write, and how they are checked and converted,
+ * are those of pbrt-v2's InitParamSet (see docs/PARSER.md): float, integer
+ * (integral values only), bool ("true"/"false"), string, point, vector,
+ * normal, rgb, color, xyz, spectrum, blackbody, texture.
  */
 #ifndef MATERIA_PARAMS_H
 #define MATERIA_PARAMS_H
@@ -58,8 +65,11 @@ MT_API void mt_paramset_destroy(mt_paramset *ps);
 /* A deep copy (the used marks included); NULL when memory is exhausted. */
 MT_API mt_paramset *mt_paramset_clone(const mt_paramset *ps);
 
-/* Adds a copy of p. A later parameter with the same name replaces an earlier
- * one (pbrt-v2 erases the previous one of the same name and type). */
+/* Adds a copy of p (its values must be finite and within float's range). A
+ * later parameter with the same name replaces an earlier one, whatever their
+ * types, and goes to the end of the list (pbrt-v2 erases only one of the
+ * same type; a name declared with two types could only fail at lookup
+ * here). Spectra are given as RGB: see the parser for the conversions. */
 MT_API mt_status mt_paramset_add(mt_paramset *ps, const mt_param *p, mt_error *err);
 
 MT_API int mt_paramset_count(const mt_paramset *ps);
@@ -80,7 +90,9 @@ MT_API mt_status mt_params_bool(const mt_paramset *ps, const char *name, int def
 MT_API mt_status mt_params_string(const mt_paramset *ps, const char *name, const char *def,
                                   const char **out, mt_error *err);
 /* A string naming a file, resolved against the directory of the statement
- * that gave it (absolute names are kept). Writes at most size bytes. */
+ * that gave it (absolute names are kept; an absent or empty string gives def
+ * as it is, as pbrt-v2's FindOneFilename). Writes at most size bytes
+ * (MT_ERR_LIMIT when the name does not fit). */
 MT_API mt_status mt_params_filename(const mt_paramset *ps, const char *name, const char *def,
                                     char *out, size_t size, mt_error *err);
 MT_API mt_status mt_params_point(const mt_paramset *ps, const char *name, mt_vec3 def,
@@ -112,7 +124,9 @@ MT_API mt_status mt_params_vectors(const mt_paramset *ps, const char *name,
 typedef void (*mt_warning_fn)(void *ctx, const char *file, int line, const char *message);
 
 /* Calls warn once per parameter that no lookup used: pbrt-v2's
- * "Parameter "x" not used". */
+ * "Parameter "x" not used", with the file and line of its declaration, in
+ * pbrt-v2's order (integers, bools, floats, points, vectors, normals,
+ * spectra, strings, textures). */
 MT_API void mt_paramset_report_unused(const mt_paramset *ps, mt_warning_fn warn, void *ctx);
 
 #endif

@@ -3,13 +3,17 @@
  * statement reader shared by the scene parser and the query tool.
  *
  * Comments (# to end of line), quoted strings, bracketed and bare values,
- * statements spanning lines, and Include (relative to the including file)
- * are handled here; each statement is delivered to a callback with its
- * positional arguments and its parameter list. Unknown directives, missing
- * arguments, unterminated strings or brackets, malformed numbers (pbrt-v2's
- * syntax has no NaN or Inf literals; values that overflow are errors) and
- * binary garbage are errors that name file, line and column and say what was
- * expected. The parser never crashes on any input.
+ * statements spanning lines, and Include (relative to the including file's
+ * directory; pbrt-v2 resolves it against the main file's) are handled here;
+ * each statement is delivered to a callback with its positional arguments
+ * and its parameter list, built as pbrt-v2's InitParamSet builds it (colours
+ * of every kind converted to RGB, SPD files read relative to the statement's
+ * directory). Unknown directives, missing arguments, unterminated strings or
+ * brackets, malformed numbers (pbrt-v2's syntax has no NaN or Inf literals;
+ * values beyond float's range are errors) and binary garbage are errors that
+ * name file, line and column and say what was expected. The parser never
+ * crashes on any input. docs/PARSER.md lists what is accepted and where it
+ * is stricter than pbrt-v2.
  */
 #ifndef MATERIA_PARSER_H
 #define MATERIA_PARSER_H
@@ -42,21 +46,24 @@ typedef mt_status (*mt_statement_fn)(void *ctx, const mt_statement *st, mt_error
 typedef struct mt_parse_options {
     mt_warning_fn warn; /* may be NULL */
     void *warn_ctx;
-    int max_include_depth; /* 0: 32 */
+    int max_include_depth; /* 0: 32 (pbrt-v2's limit); at most 1024 */
 } mt_parse_options;
 
 /* Parses the file at path. */
 MT_API mt_status mt_parse_file(const char *path, const mt_parse_options *opt,
                                mt_statement_fn fn, void *ctx, mt_error *err);
 
-/* Parses text; name is used in messages, dir resolves Include and file names,
- * first_line numbers the text's first line. */
+/* Parses text; name is used in messages (NULL: "<string>"), dir resolves
+ * Include and file names (NULL: the current directory), first_line numbers
+ * the text's first line. */
 MT_API mt_status mt_parse_string(const char *text, const char *name, const char *dir,
                                  int first_line, const mt_parse_options *opt,
                                  mt_statement_fn fn, void *ctx, mt_error *err);
 
 /* 1 when text ends inside a bracket or a quoted string (more lines needed
- * to complete the statement), 0 otherwise. Comments are honoured. */
+ * to complete the statement), 0 otherwise -- also when the text is malformed
+ * before its end, so that parsing it reports the error. Comments are
+ * honoured. */
 MT_API int mt_parse_incomplete(const char *text);
 
 /* 1 when word is a directive of pbrt-v2's scene language. */

@@ -6,9 +6,28 @@
  *
  * mt_state_apply handles the statements that change this state -- Identity,
  * Translate, Scale, Rotate, LookAt, CoordinateSystem, CoordSysTransform,
- * Transform, ConcatTransform, AttributeBegin/End, TransformBegin/End,
- * Texture, Material, MakeNamedMaterial, NamedMaterial -- and leaves every
- * other directive to the caller (*handled = 0).
+ * Transform, ConcatTransform, ActiveTransform, AttributeBegin/End,
+ * TransformBegin/End, Texture, Material, MakeNamedMaterial, NamedMaterial,
+ * ReverseOrientation, AreaLightSource -- and leaves every other directive to
+ * the caller (*handled = 0). Camera (which defines the coordinate system
+ * "camera"), WorldBegin (identity transform, coordinate system "world"),
+ * WorldEnd (back to the initial state), ObjectBegin and ObjectEnd (which push
+ * and pop the graphics state as AttributeBegin/End do) update the state and
+ * still give *handled = 0: the caller has its own work to do with them.
+ *
+ * Stricter than pbrt-v2 (which warns or ignores): an unbalanced or crossed
+ * End (AttributeEnd closing a TransformBegin), CoordSysTransform or
+ * NamedMaterial of an undefined name, MakeNamedMaterial without "string
+ * type", a Texture type other than float/color/spectrum, and transforms that
+ * are singular or not finite (Scale 0, Rotate about a zero axis, a singular
+ * Transform) are errors naming the statement's file and line. The state does
+ * not enforce pbrt-v2's options/world blocks, so that the query tool can send
+ * statements without WorldBegin.
+ *
+ * Texture creates the texture at once (mt_texture_create) and reports its
+ * unused parameters through the warning callback; Material and
+ * MakeNamedMaterial only record (mt_state_material, mt_state_named_material):
+ * their parameters are checked when the material is made.
  */
 #ifndef MATERIA_STATE_H
 #define MATERIA_STATE_H
@@ -28,9 +47,47 @@ MT_API void mt_state_set_warning(mt_state *s, mt_warning_fn warn, void *ctx);
 MT_API mt_status mt_state_apply(mt_state *s, const mt_statement *st, int *handled,
                                 mt_error *err);
 
+/* The current transform (pbrt-v2's curTransform[0], the start-time
+ * transform that textures, materials and static shapes use). */
 MT_API const mt_transform *mt_state_transform(const mt_state *s);
+/* The end-time transform (curTransform[1]): the same as the start one unless
+ * ActiveTransform limited a change to one of them. */
+MT_API const mt_transform *mt_state_transform_end(const mt_state *s);
 MT_API const mt_texture_table *mt_state_textures(const mt_state *s);
-/* Attribute/transform stack depth (0 at the top level). */
+/* Attribute/transform/object stack depth (0 at the top level). */
 MT_API int mt_state_depth(const mt_state *s);
+/* ReverseOrientation's flag (toggled by each, restored by AttributeEnd). */
+MT_API int mt_state_reverse_orientation(const mt_state *s);
+/* The current AreaLightSource's type name, NULL when none; *params (may be
+ * NULL) receives its parameters. */
+MT_API const char *mt_state_area_light(const mt_state *s, const mt_paramset **params);
+
+/*
+ * What a material is built from (pbrt-v2 api.cpp: pbrtMaterial records a
+ * type and its parameters; pbrtMakeNamedMaterial builds at once from its
+ * parameters, the current Material's parameters, the textures and transform
+ * of that moment; GraphicsState::CreateMaterial uses the NamedMaterial if one
+ * is selected, else the Material). geom and material are the two lists of
+ * pbrt-v2's TextureParams. Everything points into the state and stays valid
+ * until the next mt_state_apply or mt_state_destroy.
+ */
+typedef struct mt_material_spec {
+    const char *name;     /* the named material's name; NULL for a Material statement */
+    const char *type;     /* "matte", "plastic", ... (MakeNamedMaterial's "string type") */
+    const mt_paramset *geom;     /* named: MakeNamedMaterial's parameters; otherwise NULL,
+                                    for the caller's shape parameters */
+    const mt_paramset *material; /* the current Material's parameters (for a named material:
+                                    those current when it was made); never NULL */
+    const mt_texture_table *textures; /* named: as when it was made; otherwise the current */
+    mt_transform transform;           /* material to world, likewise */
+} mt_material_spec;
+
+/* The material a Shape would get now: the one NamedMaterial selected, else
+ * the last Material statement's ("matte" with no parameters at first). */
+MT_API void mt_state_material(const mt_state *s, mt_material_spec *out);
+/* The material MakeNamedMaterial defined as name (for "mix"'s
+ * namedmaterial1/2); MT_ERR_NOT_FOUND when there is none in scope. */
+MT_API mt_status mt_state_named_material(const mt_state *s, const char *name,
+                                         mt_material_spec *out, mt_error *err);
 
 #endif

@@ -48,7 +48,9 @@ MT_API mt_texture_table *mt_texture_table_create(void);
 /* A copy sharing the textures (AttributeBegin); NULL when out of memory. */
 MT_API mt_texture_table *mt_texture_table_clone(const mt_texture_table *t);
 MT_API void mt_texture_table_destroy(mt_texture_table *t);
-/* Binds name to tex in tex's namespace, replacing an earlier binding. */
+/* Binds name to tex in tex's namespace, replacing (and releasing) an
+ * earlier binding. The table takes its own reference: the caller keeps, and
+ * later releases, the one it holds. */
 MT_API mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture *tex,
                                       mt_error *err);
 /* The texture bound to name, or NULL (no new reference). */

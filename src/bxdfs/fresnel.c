@@ -36,18 +36,17 @@ mt_fresnel mt_fresnel_noop(void)
 /* Unpolarized reflectance: the mean of the squared parallel and perpendicular
  * amplitude ratios. The denominators vanish only for cosi = cost = 0, which
  * FresnelDielectric never passes (sin t = 1 is total internal reflection). */
+static mt_real fr_diel(mt_real cosi, mt_real cost, mt_real etai, mt_real etat)
+{
+    mt_real rparl = ((etat * cosi) - (etai * cost)) / ((etat * cosi) + (etai * cost));
+    mt_real rperp = ((etai * cosi) - (etat * cost)) / ((etai * cosi) + (etat * cost));
+    return (rparl * rparl + rperp * rperp) / 2;
+}
+
 mt_rgb mt_fr_diel(mt_real cosi, mt_real cost, mt_rgb etai, mt_rgb etat)
 {
-    mt_rgb r;
-    int c;
-    for (c = 0; c < 3; ++c) {
-        mt_real rparl = ((etat.c[c] * cosi) - (etai.c[c] * cost)) /
-                        ((etat.c[c] * cosi) + (etai.c[c] * cost));
-        mt_real rperp = ((etai.c[c] * cosi) - (etat.c[c] * cost)) /
-                        ((etai.c[c] * cosi) + (etat.c[c] * cost));
-        r.c[c] = (rparl * rparl + rperp * rperp) / 2;
-    }
-    return r;
+    return mt_rgb_make(fr_diel(cosi, cost, etai.c[0], etat.c[0]), fr_diel(cosi, cost, etai.c[1], etat.c[1]),
+                       fr_diel(cosi, cost, etai.c[2], etat.c[2]));
 }
 
 /* The conductor approximation pbrt-v2 uses. With eta = k = 0 and cosi = 0 the
@@ -85,8 +84,8 @@ mt_rgb mt_fresnel_evaluate(const mt_fresnel *f, mt_real cosi)
         }
         sint = ei / et * mt_sqrt(mt_max(0, 1 - cosi * cosi));
         if (sint >= 1) return mt_rgb_gray(1); /* total internal reflection */
-        return mt_fr_diel(mt_fabs(cosi), mt_sqrt(mt_max(0, 1 - sint * sint)), mt_rgb_gray(ei),
-                          mt_rgb_gray(et));
+        /* the indices are scalars: one channel's value is every channel's */
+        return mt_rgb_gray(fr_diel(mt_fabs(cosi), mt_sqrt(mt_max(0, 1 - sint * sint)), ei, et));
     }
     case MT_FRESNEL_NOOP:
         break;

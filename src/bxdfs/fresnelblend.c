@@ -11,13 +11,18 @@ typedef struct fresnelblend {
     mt_distribution dist;
 } fresnelblend;
 
-static mt_rgb schlick(const fresnelblend *fb, mt_real costheta)
+/* x^5 by multiplication: pbrt-v2 calls powf(x, 5), which this matches to a
+ * couple of ulps at a fraction of the cost (three of these per evaluation). */
+static mt_real pow5(mt_real x)
 {
-    return mt_rgb_add(fb->Rs, mt_rgb_scale(mt_rgb_sub(mt_rgb_gray(1), fb->Rs),
-                                           mt_pow(1 - costheta, 5)));
+    mt_real x2 = x * x;
+    return x2 * x2 * x;
 }
 
-static mt_real pow5(mt_real x) { return mt_pow(x, 5); }
+static mt_rgb schlick(const fresnelblend *fb, mt_real costheta)
+{
+    return mt_rgb_add(fb->Rs, mt_rgb_scale(mt_rgb_sub(mt_rgb_gray(1), fb->Rs), pow5(1 - costheta)));
+}
 
 static mt_rgb fresnelblend_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
 {

@@ -1,0 +1,65 @@
+/*
+ * materia/material.h -- pbrt-v2's materials.
+ *
+ * A material is a reference-counted, read-only handle created from a pbrt-v2
+ * parameter list by name (matte, plastic, glass, mirror, metal, shinymetal,
+ * substrate, translucent, uber, mix, measured, subsurface, kdsubsurface), with
+ * pbrt-v2's parameter names and defaults. At a shading point it builds a BSDF
+ * in the caller's arena (bump mapping first when "bumpmap" is given), and the
+ * two subsurface materials also give BSSRDF coefficients. Materials are safe
+ * to share between threads; each thread passes its own arena.
+ */
+#ifndef MATERIA_MATERIAL_H
+#define MATERIA_MATERIAL_H
+
+#include "materia/bsdf.h"
+#include "materia/texture.h"
+
+typedef struct mt_material mt_material;
+
+/* pbrt-v2's BSSRDF: the reduced scattering and absorption coefficients (per
+ * mm in the units the scene uses, scale applied) and the relative index. */
+typedef struct mt_bssrdf {
+    mt_rgb sigma_a, sigma_prime_s;
+    mt_real eta;
+} mt_bssrdf;
+
+/* Looks up a named material (MakeNamedMaterial) for the mix material; NULL
+ * when there is none. Returns a borrowed pointer. */
+typedef const mt_material *(*mt_material_lookup_fn)(void *ctx, const char *name);
+
+typedef struct mt_material_ctx {
+    mt_material_lookup_fn lookup; /* may be NULL: then "mix" cannot be created */
+    void *lookup_ctx;
+    mt_warning_fn warn;           /* warnings (pbrt-v2's); may be NULL */
+    void *warn_ctx;
+} mt_material_ctx;
+
+/* Creates the material of pbrt-v2 type `type` from tp (TextureParams:
+ * geometry parameters first, then the material's), declared under the
+ * transform mtl2world. NULL with err naming the parameter for an unknown
+ * type, a bad parameter or a file that cannot be read. */
+MT_API mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,
+                                       const mt_texparams *tp, const mt_material_ctx *ctx,
+                                       mt_error *err);
+
+MT_API mt_material *mt_material_retain(mt_material *m);
+MT_API void mt_material_release(mt_material *m);
+MT_API const char *mt_material_type(const mt_material *m);
+MT_API mt_mode mt_material_mode(const mt_material *m);
+
+/* The BSDF at a shading point: dg_geom carries the geometric normal (n) and
+ * dg_shading the shading frame, as pbrt-v2's Material::GetBSDF receives them.
+ * NULL with err filled when the arena is exhausted or the geometry invalid. */
+MT_API mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom,
+                                     const mt_diffgeom *dg_shading, mt_arena *arena,
+                                     mt_error *err);
+
+/* 1 and *out filled for the subsurface materials, 0 for the others. */
+MT_API int mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom,
+                                  const mt_diffgeom *dg_shading, mt_bssrdf *out);
+
+/* The names of the 13 material types; *count receives their number. */
+MT_API const char *const *mt_material_types(int *count);
+
+#endif
