@@ -150,13 +150,40 @@ static mt_texture *create_bilerp(int is_float, const mt_transform *tex2world,
     return mt__tex_bilerp(is_float, &m, v, tp->mode, err);
 }
 
-/* Reads the parameters; the pyramid comes from the MIP-map cache, which is
- * not merged into this branch yet. */
+/* pbrt-v2 CreateImage*Texture: the parameters checked here; the pyramid
+ * comes from the process-wide MIP-map cache, not merged into this branch
+ * yet (the creation then reports MT_ERR_UNSUPPORTED). */
 static mt_texture *create_imagemap(int is_float, const mt_transform *tex2world,
                                    const mt_texparams *tp, mt_error *err)
 {
+    static const char *const wraps[] = {"repeat", "black", "clamp", NULL}; /* mt_wrap order */
     mt_map2d m;
-    if (mapping2d(tex2world, tp, "imagemap", &m, err)) return NULL;
+    mt_real maxaniso, scale, gamma;
+    int trilinear, wrap;
+    char path[4096];
+    if (mapping2d(tex2world, tp, "imagemap", &m, err) ||
+        mt_texparams_float(tp, "maxanisotropy", 8, &maxaniso, err) ||
+        mt_texparams_bool(tp, "trilinear", 0, &trilinear, err) ||
+        (wrap = choice(tp, "wrap", "repeat", wraps, "imagemap", err)) < 0 ||
+        mt_texparams_float(tp, "scale", 1, &scale, err) ||
+        mt_texparams_float(tp, "gamma", 1, &gamma, err) ||
+        mt_texparams_filename(tp, "filename", "", path, sizeof path, err))
+        return NULL;
+    if (!mt__tex_check_real(scale, "scale", "imagemap", err) ||
+        !mt__tex_check_real(gamma, "gamma", "imagemap", err))
+        return NULL;
+    /* pow(0, gamma) is infinite for gamma < 0 */
+    if (gamma < 0) {
+        mt_error_param(err, MT_ERR_INVALID, "gamma", "imagemap texture: gamma %g is negative",
+                       (double)gamma);
+        return NULL;
+    }
+    if (!path[0]) {
+        mt_error_param(err, MT_ERR_INVALID, "filename", "imagemap texture: no filename");
+        return NULL;
+    }
+    (void)is_float;
+    (void)trilinear;
     mt_error_set(err, MT_ERR_UNSUPPORTED,
                  "imagemap texture: waits for the MIP-map cache (branch image)");
     return NULL;
