@@ -607,6 +607,38 @@ static void eval_all(mt_rgb *out)
         }
 }
 
+/* Awkward but valid shading points: exact lattice values and check edges,
+ * signed zeros, the origin and axes of the projections, large coordinates
+ * (beyond 2^31 for the noise lattice), zero, one-sided and wide footprints:
+ * every class in both modes stays finite. */
+static void extremes(void)
+{
+    static const double coord[] = {0, -0.0, 1, -1, 0.5, 1e-30, 3e9, -7e6, 1e4};
+    static const double width[] = {0, 1e-30, 0.25, 3, 1e3};
+    int k, i, j, w, bad = 0, n = 0;
+    for (k = 0; k < NTEX; ++k)
+        for (i = 0; i < 9; ++i)
+            for (j = 0; j < 9; ++j)
+                for (w = 0; w < 5; ++w) {
+                    mt_diffgeom dg = tu_dg((mt_real)coord[i], (mt_real)coord[j],
+                                           mt_v3((mt_real)coord[j], (mt_real)coord[i],
+                                                 (mt_real)coord[(i + j) % 9]));
+                    mt_rgb r;
+                    dg.dudx = (mt_real)width[w];
+                    dg.dvdy = (mt_real)width[(w + i) % 5];
+                    dg.dpdx = mt_v3((mt_real)width[w], 0, 0);
+                    dg.dpdy = mt_v3(0, 0, (mt_real)width[(w + j) % 5]);
+                    r = mt_texture_eval_rgb(all[k], &dg);
+                    n++;
+                    if (!mt_rgb_is_finite(r) || !mt_is_finite(mt_texture_eval_float(all[k], &dg)))
+                        if (bad++ < 3)
+                            printf("  texture %d (%s) not finite at u %g v %g width %g\n", k,
+                                   mt_texture_class(all[k]), coord[i], coord[j], width[w]);
+                }
+    t_check(bad == 0, "textures: finite at lattice points, edges, axes, large coordinates and "
+            "degenerate or wide footprints", "%d of %d evaluations", bad, n);
+}
+
 static void *thread_main(void *arg)
 {
     eval_all(arg);
@@ -647,6 +679,7 @@ static void test_threads(void)
             t_fail("textures: determinism", "texture %d not created: %s", k, err.message);
             return;
         }
+    extremes();
     eval_all(r0);
     pthread_create(&t1, NULL, thread_main, r1);
     pthread_create(&t2, NULL, thread_main, r2);
