@@ -168,8 +168,8 @@ static mt_status b_mix(const cf_subject *s, mt_arena *a, mt_mode m, mt_bsdf **ou
 static mt_status b_shiny(const cf_subject *s, mt_arena *a, mt_mode m, mt_bsdf **out, mt_error *err)
 {
     mt_bsdf *b = *out = new_bsdf(a, m, 1, err);
-    mt_fresnel fr = mt_fresnel_conductor(mt_fresnel_approx_eta(mt_rgb_gray((mt_real)s->p[0])),
-                                         mt_fresnel_approx_k(mt_rgb_gray((mt_real)s->p[0])));
+    /* as shinymetal.cpp: FresnelApproxEta, k = 0 */
+    mt_fresnel fr = mt_fresnel_conductor(mt_fresnel_approx_eta(mt_rgb_gray((mt_real)s->p[0])), mt_rgb_black());
     if (!b) return err->status;
     ADD(mt_microfacet_create(a, m, mt_rgb_gray(1), fr, mt_blinn(10), err));
     ADD(mt_specular_reflection_create(a, m, mt_rgb_gray(1), fr, err));

@@ -7,6 +7,7 @@
 #include "materia/bsdf.h"
 #include "materia/sampling.h"
 #include "core/dir.h"
+#include "bsdf_internal.h"
 
 struct mt_bsdf {
     mt_diffgeom dgs;
@@ -238,4 +239,11 @@ mt_rgb mt_bsdf_rho_hh(const mt_bsdf *b, mt_rng *rng, unsigned flags, int sqrt_sa
                 ret = mt_rgb_add(ret, b->bxdfs[i]->ops->rho_hh(b->bxdfs[i], n, r1, r2));
     }
     return mt_rgb_scale(ret, (mt_real)1 / n);
+}
+
+/* The mix material replaces components with scaled ones (pbrt-v2's
+ * MixMaterial is the BSDF's friend for exactly this). */
+void mt__bsdf_set_component(mt_bsdf *b, int i, mt_bxdf *x)
+{
+    if (i >= 0 && i < b->n && x) b->bxdfs[i] = x;
 }

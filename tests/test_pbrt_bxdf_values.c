@@ -74,7 +74,10 @@ static mt_status build_shinymetal(mt_bsdf **out, mt_arena *a, mt_vec3 ng, mt_err
 {
     mt_bsdf *b = *out = new_bsdf(a, ng, 1, err);
     mt_rgb one = mt_rgb_gray(1);
-    mt_fresnel fr = mt_fresnel_conductor(mt_fresnel_approx_eta(one), mt_fresnel_approx_k(one));
+    /* pbrt-v2's shinymetal.cpp defines FresnelApproxK but builds both
+     * conductors with k = 0 (with the default Ks = Kr = 1, eta = 3999
+     * dominates and k = 63 would change f by at most 1e-4 at grazing) */
+    mt_fresnel fr = mt_fresnel_conductor(mt_fresnel_approx_eta(one), mt_rgb_black());
     ADD(mt_microfacet_create(a, M, mt_rgb_gray(1), fr, mt_blinn(1 / 0.1f), err));
     ADD(mt_specular_reflection_create(a, M, mt_rgb_gray(1), fr, err));
     return MT_OK;

@@ -59,6 +59,25 @@ MT_API mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg
 MT_API int mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom,
                                   const mt_diffgeom *dg_shading, mt_bssrdf *out);
 
+/* pbrt-v2's Fdr: the hemispherically averaged Fresnel reflectance of a
+ * dielectric of relative index eta (polynomial fits). */
+MT_API mt_real mt_fdr(mt_real eta);
+
+/* pbrt-v2's SubsurfaceFromDiffuse: the sigma_a and sigma'_s that give the
+ * dipole a diffuse reflectance kd with mean free path mfp and index eta (per
+ * channel, by 16 bisection steps on the reduced albedo). */
+MT_API void mt_subsurface_from_diffuse(mt_rgb kd, mt_real mfp, mt_real eta, mt_rgb *sigma_a,
+                                       mt_rgb *sigma_prime_s);
+
+/* The material a Shape would get now from the graphics state: the one
+ * NamedMaterial selected (created from its MakeNamedMaterial parameters) or
+ * the last Material statement's, with shape_params (may be NULL) read first
+ * as pbrt-v2's GraphicsState::CreateMaterial does; a mix finds its named
+ * materials in the state. NULL with err filled on any error. */
+struct mt_state;
+MT_API mt_material *mt_material_from_state(const struct mt_state *s, const mt_paramset *shape_params,
+                                           mt_error *err);
+
 /* The names of the 13 material types; *count receives their number. */
 MT_API const char *const *mt_material_types(int *count);
 

@@ -29,7 +29,6 @@ typedef unsigned mt_mode;
 /* Material layer */
 #define MT_FIX_DIELECTRIC_SIDE     (1u << 8)  /* FresnelDielectric(1.5, 1) in plastic & co */
 #define MT_FIX_UBER_OPACITY        (1u << 9)  /* opacity > 1: negative transmission */
-#define MT_FIX_MEASURED_EMPTY      (1u << 10) /* irregular measured BRDF 0/0 */
 /* Texture layer */
 #define MT_FIX_TRILINEAR_WIDTH     (1u << 16) /* trilinear MIP filter at twice the width */
 #define MT_FIX_MARBLE_INDEX        (1u << 17) /* marble reads one past its table */
@@ -46,9 +45,8 @@ typedef unsigned mt_mode;
     (MT_FIX_SCALED_PDF | MT_FIX_MICROFACET_FRESNEL | MT_FIX_RHO_LOCAL |                     \
      MT_FIX_ANISOTROPIC_NORMAL | MT_FIX_GLOSSY_SAMPLE_PDF | MT_FIX_TANGENT_PLANE |          \
      MT_FIX_BSDF_FRAME | MT_FIX_DIELECTRIC_SIDE | MT_FIX_UBER_OPACITY |                     \
-     MT_FIX_MEASURED_EMPTY | MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX |                 \
-     MT_FIX_MAPPING_3D | MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS |               \
-     MT_FIX_DOTS_INSIDE)
+     MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX | MT_FIX_MAPPING_3D |                     \
+     MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS | MT_FIX_DOTS_INSIDE)
 
 /* One entry of the errata catalog. bit is 0 for entries that materia fixes in
  * both modes (pbrt-v2 would produce NaN, Inf or memory corruption there). */

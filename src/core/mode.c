@@ -48,7 +48,7 @@ static const mt_erratum errata[] = {
     {"uber-opacity", MT_FIX_UBER_OPACITY, "material", "uber.cpp UberMaterial::GetBSDF",
      "opacity is clamped from below only, so opacity > 1 gives a negative transmission",
      "opacity clamped to [0, 1]"},
-    {"measured-empty", MT_FIX_MEASURED_EMPTY, "bxdf",
+    {"measured-empty", 0, "bxdf",
      "reflection.cpp IrregIsotropicBRDF::f",
      "when no sample lies within the largest search radius, f divides 0 by 0 (NaN); "
      "materia returns 0 there in both modes",

@@ -1,0 +1,119 @@
+/*
+ * The material base: reference counting, the registry of the 13 pbrt-v2
+ * material types, and pbrt-v2's Material::GetBSDF skeleton -- bump mapping
+ * (when a "bumpmap" is given), a BSDF for the shading frame and the geometric
+ * normal, then the type's BxDFs.
+ */
+#include <stdio.h>
+#include <string.h>
+#include "materials/material_impl.h"
+#include "core/alloc.h"
+
+/* The registry: pbrt-v2's names, one creator each. */
+#define MATERIALS(X)                                                                     \
+    X(matte) X(plastic) X(glass) X(mirror) X(metal) X(shinymetal) X(substrate)            \
+    X(translucent) X(uber) X(mix) X(measured) X(subsurface) X(kdsubsurface)
+#define NAME(n) #n,
+#define CREATOR(n) mt__##n##_create,
+static const char *const names[] = {MATERIALS(NAME)};
+static const mt_material_create_fn creators[] = {MATERIALS(CREATOR)};
+#define NTYPES (int)(sizeof names / sizeof names[0])
+
+const char *const *mt_material_types(int *count)
+{
+    if (count) *count = NTYPES;
+    return names;
+}
+
+mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,
+                                const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
+{
+    int i;
+    mt_transform id = mt_transform_identity();
+    mt_material_ctx none = {NULL, NULL, NULL, NULL};
+    if (!type) return mt_error_set(err, MT_ERR_INVALID, "material: no type given"), NULL;
+    for (i = 0; i < NTYPES; ++i)
+        if (!strcmp(names[i], type)) return creators[i](mtl2world ? mtl2world : &id, tp, ctx ? ctx : &none, err);
+    mt_error_set(err, MT_ERR_UNSUPPORTED, "material type \"%s\" unknown", type);
+    return NULL;
+}
+
+void *mt__material_new(size_t size, const mt_material_ops *ops, const mt_tex_slot *slots, int nslots,
+                       const mt_texparams *tp, mt_error *err)
+{
+    mt_material *m = mt__calloc(1, size);
+    int i;
+    if (!m) {
+        mt_error_set(err, MT_ERR_NOMEM, "out of memory creating a %s material", ops->type);
+        return NULL;
+    }
+    m->ops = ops;
+    m->refs = 1;
+    m->mode = tp->mode;
+    for (i = 0; i < nslots; ++i) {
+        const mt_tex_slot *sl = &slots[i];
+        m->tex[i] = sl->is_float
+                        ? mt_texparams_float_texture(tp, sl->name, sl->def[0], err)
+                        : mt_texparams_spectrum_texture(tp, sl->name, mt_rgb_make(sl->def[0], sl->def[1], sl->def[2]), err);
+        if (!m->tex[i]) break;
+    }
+    /* a type with its own get_bsdf (the mix) has no "bumpmap" in pbrt-v2 */
+    if (i < nslots || (!ops->get_bsdf && mt_texparams_float_texture_opt(tp, "bumpmap", &m->bump, err) != MT_OK)) {
+        if (err) { /* say which material the parameter belongs to */
+            char msg[sizeof err->message];
+            snprintf(msg, sizeof msg, "%s", err->message);
+            snprintf(err->message, sizeof err->message, "%s material: %.480s", ops->type, msg);
+        }
+        mt_material_release(m);
+        return NULL;
+    }
+    return m;
+}
+
+mt_material *mt_material_retain(mt_material *m)
+{
+    if (m) __atomic_add_fetch(&m->refs, 1, __ATOMIC_RELAXED);
+    return m;
+}
+
+void mt_material_release(mt_material *m)
+{
+    int i;
+    if (!m || __atomic_sub_fetch(&m->refs, 1, __ATOMIC_ACQ_REL) != 0) return;
+    if (m->ops->destroy) m->ops->destroy(m);
+    mt_texture_release(m->bump);
+    for (i = 0; i < MT_MATERIAL_SLOTS; ++i) mt_texture_release(m->tex[i]);
+    mt__free(m);
+}
+
+const char *mt_material_type(const mt_material *m) { return m->ops->type; }
+mt_mode mt_material_mode(const mt_material *m) { return m->mode; }
+
+mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom,
+                              const mt_diffgeom *dg_shading, mt_arena *arena, mt_error *err)
+{
+    mt_diffgeom dgs;
+    mt_bsdf *b;
+    if (m->ops->get_bsdf) return m->ops->get_bsdf(m, dg_geom, dg_shading, arena, err);
+    if (m->bump)
+        mt_bump(m->bump, dg_geom, dg_shading, &dgs, 0);
+    else
+        dgs = *dg_shading;
+    b = mt_bsdf_create(arena, m->mode, &dgs, dg_geom->n, m->ops->eta ? m->ops->eta(m, &dgs) : 1, err);
+    if (!b) return NULL;
+    if (m->ops->add_bxdfs(m, b, &dgs, arena, err) != MT_OK) return NULL;
+    return b;
+}
+
+int mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom, const mt_diffgeom *dg_shading,
+                           mt_bssrdf *out)
+{
+    /* pbrt-v2's GetBSSRDF reads the unbumped shading point */
+    return m->ops->bssrdf ? m->ops->bssrdf(m, dg_shading, out) : 0;
+}
+
+int mt__material_max_bxdfs(const mt_material *m) { return m->ops->max_bxdfs(m); }
+
+mt_rgb mt__tex_rgb(const mt_texture *t, const mt_diffgeom *dg) { return mt_rgb_clamp0(mt_texture_eval_rgb(t, dg)); }
+mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg) { return mt_texture_eval_float(t, dg); }
+

@@ -1,0 +1,23 @@
+/* matte (pbrt-v2 matte.cpp): Lambertian when sigma is 0, Oren-Nayar
+ * otherwise, with sigma (degrees) clamped to [0, 90]. */
+#include "materials/material_impl.h"
+
+enum { KD, SIGMA };
+static const mt_tex_slot slots[] = {{"Kd", 0, {0.5f, 0.5f, 0.5f}}, {"sigma", 1, {0}}};
+
+static int matte_max(const mt_material *m) { return 1; }
+
+static mt_status matte_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
+{
+    mt_rgb r = MT_RGB(m, KD, dgs);
+    mt_real sig = mt_clamp(MT_FLOAT(m, SIGMA, dgs), 0, 90);
+    if (sig == 0) return mt_bsdf_add(b, mt_lambertian_create(a, m->mode, r, err), err);
+    return mt_bsdf_add(b, mt_orennayar_create(a, m->mode, r, sig, err), err);
+}
+
+static const mt_material_ops ops = {"matte", matte_max, matte_add, NULL, NULL, NULL, NULL};
+
+mt_material *mt__matte_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
+{
+    return mt__material_new(sizeof(mt_material), &ops, slots, 2, tp, err);
+}

@@ -1,0 +1,30 @@
+/* plastic (pbrt-v2 plastic.cpp): a Lambertian base and a Blinn microfacet
+ * coat. pbrt-v2 builds the coat's Fresnel term as FresnelDielectric(1.5, 1),
+ * the dielectric seen from inside (erratum dielectric-side). */
+#include "materials/material_impl.h"
+
+enum { KD, KS, ROUGHNESS };
+static const mt_tex_slot slots[] = {
+    {"Kd", 0, {0.25f, 0.25f, 0.25f}}, {"Ks", 0, {0.25f, 0.25f, 0.25f}}, {"roughness", 1, {0.1f}}};
+
+static int plastic_max(const mt_material *m) { return 2; }
+
+static mt_status plastic_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
+{
+    mt_rgb kd = MT_RGB(m, KD, dgs), ks = MT_RGB(m, KS, dgs);
+    if (!mt_rgb_is_black(kd)) MT_ADD(b, mt_lambertian_create(a, m->mode, kd, err), err);
+    if (!mt_rgb_is_black(ks)) {
+        mt_fresnel fr = (m->mode & MT_FIX_DIELECTRIC_SIDE) ? mt_fresnel_dielectric(1, 1.5f)
+                                                           : mt_fresnel_dielectric(1.5f, 1);
+        mt_real rough = MT_FLOAT(m, ROUGHNESS, dgs);
+        MT_ADD(b, mt_microfacet_create(a, m->mode, ks, fr, mt_blinn(1 / rough), err), err);
+    }
+    return MT_OK;
+}
+
+static const mt_material_ops ops = {"plastic", plastic_max, plastic_add, NULL, NULL, NULL, NULL};
+
+mt_material *mt__plastic_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
+{
+    return mt__material_new(sizeof(mt_material), &ops, slots, 3, tp, err);
+}

@@ -1,0 +1,24 @@
+/* substrate (pbrt-v2 substrate.cpp): FresnelBlend with the Ashikhmin-Shirley
+ * anisotropic distribution, exponents 1/uroughness and 1/vroughness. */
+#include "materials/material_impl.h"
+
+enum { KD, KS, UROUGH, VROUGH };
+static const mt_tex_slot slots[] = {{"Kd", 0, {0.5f, 0.5f, 0.5f}}, {"Ks", 0, {0.5f, 0.5f, 0.5f}},
+                                    {"uroughness", 1, {0.1f}}, {"vroughness", 1, {0.1f}}};
+
+static int substrate_max(const mt_material *m) { return 1; }
+
+static mt_status substrate_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
+{
+    mt_rgb d = MT_RGB(m, KD, dgs), s = MT_RGB(m, KS, dgs);
+    mt_real u = MT_FLOAT(m, UROUGH, dgs), v = MT_FLOAT(m, VROUGH, dgs);
+    if (mt_rgb_is_black(d) && mt_rgb_is_black(s)) return MT_OK;
+    return mt_bsdf_add(b, mt_fresnelblend_create(a, m->mode, d, s, mt_anisotropic(1 / u, 1 / v), err), err);
+}
+
+static const mt_material_ops ops = {"substrate", substrate_max, substrate_add, NULL, NULL, NULL, NULL};
+
+mt_material *mt__substrate_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
+{
+    return mt__material_new(sizeof(mt_material), &ops, slots, 4, tp, err);
+}

@@ -1,0 +1,52 @@
+/*
+ * translucent (pbrt-v2 translucent.cpp): diffuse and glossy lobes, each both
+ * reflected (scaled by "reflect") and transmitted as a mirrored BRDF (scaled
+ * by "transmit"). pbrt-v2 builds the glossy Fresnel term as
+ * FresnelDielectric(index, 1) (erratum dielectric-side).
+ */
+#include "materials/material_impl.h"
+
+enum { KD, KS, ROUGHNESS, REFLECT, TRANSMIT, INDEX };
+static const mt_tex_slot slots[] = {{"Kd", 0, {0.25f, 0.25f, 0.25f}}, {"Ks", 0, {0.25f, 0.25f, 0.25f}},
+                                    {"roughness", 1, {0.1f}},         {"reflect", 0, {0.5f, 0.5f, 0.5f}},
+                                    {"transmit", 0, {0.5f, 0.5f, 0.5f}}, {"index", 1, {1.5f}}};
+
+static int translucent_max(const mt_material *m) { return 4; }
+
+static mt_real translucent_eta(const mt_material *m, const mt_diffgeom *dgs) { return MT_FLOAT(m, INDEX, dgs); }
+
+static mt_status translucent_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
+{
+    mt_real ior = MT_FLOAT(m, INDEX, dgs);
+    mt_rgb r = MT_RGB(m, REFLECT, dgs), t = MT_RGB(m, TRANSMIT, dgs), kd, ks;
+    mt_mode mode = m->mode;
+    if (mt_rgb_is_black(r) && mt_rgb_is_black(t)) return MT_OK;
+    kd = MT_RGB(m, KD, dgs);
+    if (!mt_rgb_is_black(kd)) {
+        if (!mt_rgb_is_black(r)) MT_ADD(b, mt_lambertian_create(a, mode, mt_rgb_mul(r, kd), err), err);
+        if (!mt_rgb_is_black(t))
+            MT_ADD(b, mt_brdf_to_btdf_create(a, mode, mt_lambertian_create(a, mode, mt_rgb_mul(t, kd), err), err),
+                   err);
+    }
+    ks = MT_RGB(m, KS, dgs);
+    if (!mt_rgb_is_black(ks)) {
+        mt_real rough = MT_FLOAT(m, ROUGHNESS, dgs);
+        mt_fresnel fr = (mode & MT_FIX_DIELECTRIC_SIDE) ? mt_fresnel_dielectric(1, ior) : mt_fresnel_dielectric(ior, 1);
+        if (!mt_rgb_is_black(r))
+            MT_ADD(b, mt_microfacet_create(a, mode, mt_rgb_mul(r, ks), fr, mt_blinn(1 / rough), err), err);
+        if (!mt_rgb_is_black(t))
+            MT_ADD(b,
+                   mt_brdf_to_btdf_create(a, mode, mt_microfacet_create(a, mode, mt_rgb_mul(t, ks), fr, mt_blinn(1 / rough), err),
+                                          err),
+                   err);
+    }
+    return MT_OK;
+}
+
+static const mt_material_ops ops = {"translucent", translucent_max, translucent_add, translucent_eta, NULL, NULL, NULL};
+
+mt_material *mt__translucent_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
+                                    mt_error *err)
+{
+    return mt__material_new(sizeof(mt_material), &ops, slots, 6, tp, err);
+}
