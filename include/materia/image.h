@@ -3,10 +3,18 @@
  * API, OpenEXRCore), PNG (libpng) and PFM.
  *
  * Pixels are stored as float, interleaved, row 0 at the top. Reading maps
- * EXR channels by name (files store them sorted: B, G, R), converts 8- and
- * 16-bit sRGB PNG to linear with materia's own transfer function, and reads
- * PFM bottom-to-top as the format requires. Writing goes to a temporary file
- * that is renamed into place, so an error never leaves a partial file.
+ * EXR channels by name (files store them sorted: B, G, R): R, G, B give RGB
+ * (a missing one reads 0), with A RGBA, Y alone one channel, Y and A RGBA;
+ * half, float and uint channels, scanline and tiled files (level 0), the
+ * data window as the image wherever it lies. PNG of every kind (1-16 bit
+ * gray, gray-alpha, RGB, RGBA, palette with tRNS) is decoded from sRGB with
+ * materia's own transfer function, alpha linear; gray gives one channel,
+ * gray-alpha and palette-with-alpha RGBA. PFM ("PF"/"Pf", either byte
+ * order, values times |scale|) is read bottom-to-top as the format requires.
+ * A truncated or corrupt file is an error naming the file, never a crash.
+ * Writing goes to a temporary file in the same directory that is renamed
+ * into place, so an error never leaves a partial file (and an existing file
+ * survives a failed overwrite).
  */
 #ifndef MATERIA_IMAGE_H
 #define MATERIA_IMAGE_H
@@ -32,9 +40,10 @@ typedef struct mt_image_attr {
     const char *name, *value;
 } mt_image_attr;
 
-/* Writes by extension: EXR as float RGB(A) with ZIP compression, PNG as
- * 8-bit sRGB (values clamped to [0, 1] after the transfer function), PFM as
- * float RGB (or grayscale). */
+/* Writes by extension: EXR as float RGB(A) -- Y for a one-channel image --
+ * with ZIP compression and the string attributes, PNG as 8-bit sRGB (values
+ * clamped to [0, 1] after the transfer function; alpha linear), PFM as
+ * little-endian float RGB (alpha dropped) or grayscale. */
 MT_API mt_status mt_image_write(const char *path, const mt_image *img, const mt_image_attr *attrs,
                                 int nattrs, mt_error *err);
 

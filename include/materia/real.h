@@ -10,6 +10,8 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 #include "materia/config.h"
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -81,7 +83,32 @@ static inline mt_real mt_lerp(mt_real t, mt_real a, mt_real b) { return (1 - t) 
 /* pbrt-v2 pbrt.h: (M_PI / 180.f) * deg. */
 static inline mt_real mt_radians(mt_real deg) { return (MT_PI / 180) * deg; }
 static inline mt_real mt_degrees(mt_real rad) { return (180 / MT_PI) * rad; }
-/* isfinite/isnan classify without raising FE_INVALID, unlike ordered compares. */
-static inline int mt_is_finite(mt_real v) { return isfinite(v); }
+/* Classification by the exponent bits: no floating-point comparison, so no
+ * FE_INVALID for a NaN whatever instructions the compiler picks (clang's
+ * default code for isfinite() may use a signalling compare). */
+static inline int mt_is_finite(mt_real v)
+{
+#if MT_USE_DOUBLE
+    uint64_t u;
+    memcpy(&u, &v, sizeof u);
+    return ((u >> 52) & 0x7ff) != 0x7ff;
+#else
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    return ((u >> 23) & 0xff) != 0xff;
+#endif
+}
+static inline int mt_is_nan(mt_real v)
+{
+#if MT_USE_DOUBLE
+    uint64_t u;
+    memcpy(&u, &v, sizeof u);
+    return ((u >> 52) & 0x7ff) == 0x7ff && (u & 0xfffffffffffffULL) != 0;
+#else
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    return ((u >> 23) & 0xff) == 0xff && (u & 0x7fffff) != 0;
+#endif
+}
 
 #endif

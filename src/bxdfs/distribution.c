@@ -9,7 +9,7 @@
 static mt_real clamp_exponent(mt_real e)
 {
     /* pbrt-v2: exponents above 10000 (or NaN) are 10000. */
-    return (e > 10000 || isnan(e)) ? 10000 : e;
+    return (mt_is_nan(e) || e > 10000) ? 10000 : e;
 }
 
 mt_distribution mt_blinn(mt_real exponent)

@@ -1,0 +1,39 @@
+/*
+ * materia/query.h -- the query protocol of materia-query, as a library.
+ *
+ * A session holds pbrt-v2's graphics state, a mode and a shading point, and
+ * answers one query line at a time (see README.md, "The query tool"):
+ *   pbrt-v2 statements (Texture, Material, MakeNamedMaterial, NamedMaterial,
+ *   transforms, AttributeBegin/End)                         -> ok
+ *   mode pbrt-v2 | corrected                                -> ok
+ *   at <key> <values>... (p n ng dpdu dpdv dndu dndv uv dpdx dpdy duvdx
+ *   duvdy flip)                                             -> ok
+ *   eval wox woy woz wix wiy wiz                            -> fr fg fb pdf
+ *   sample wox woy woz uc u1 u2          -> wix wiy wiz fr fg fb pdf flags
+ *   rho wox woy woz                                         -> r g b
+ *   bssrdf                  -> sa_r sa_g sa_b sps_r sps_g sps_b eta | none
+ *   shading   -> nx ny nz dpdux dpduy dpduz dpdvx dpdvy dpdvz (after bump)
+ *   texture "name"                                 -> value | r g b
+ * A bad line is answered "error <message>" and the session goes on. A
+ * statement continues on the next line while a bracket or string is open.
+ */
+#ifndef MATERIA_QUERY_H
+#define MATERIA_QUERY_H
+
+#include "materia/error.h"
+
+typedef struct mt_query mt_query;
+
+/* A session whose relative file names resolve against dir (NULL: "."). */
+MT_API mt_query *mt_query_create(const char *dir, mt_error *err);
+MT_API void mt_query_destroy(mt_query *q);
+
+/* Feeds one line (without its newline). Returns 1 and writes the answer into
+ * out when the line completes a query, 0 when it was blank, a comment, or
+ * the start of a statement that continues on the next line. */
+MT_API int mt_query_line(mt_query *q, const char *line, char *out, size_t size);
+
+/* At end of input: 1 and an error answer when a statement was left open. */
+MT_API int mt_query_finish(mt_query *q, char *out, size_t size);
+
+#endif
