@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "support/check.h"
+#include "support/pbrt_values.h"
 
 typedef mt_status (*builder)(mt_bsdf **out, mt_arena *a, mt_vec3 ng, mt_error *err);
 
@@ -112,51 +113,6 @@ static const struct {
     {"leak_matte", build_matte, 1},            {"leak_glass", build_glass, 1},
 };
 
-/* x rounded to float. The volatile is not decoration: GCC 12.2's SLP
- * vectorizer drops the pair of conversions in (double)(float)v[i] when two
- * such lanes are vectorized together (-O2; -fno-tree-slp-vectorize or clang
- * give the right answer), which silently un-rounds the inputs. */
-static mt_real to_float(double x)
-{
-    volatile float f = (float)x;
-    return f;
-}
-
-static int close_rel(double got, double want) { return fabs(got - want) <= 1e-4 * fmax(fabs(got), fabs(want)) + 1e-9; }
-
-
-
-static int eval_agrees(const mt_bsdf *b, const double *v, mt_vec3 wo, mt_vec3 wi)
-{
-    mt_rgb f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
-    mt_real pdf = mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL);
-    return close_rel(f.c[0], v[11]) && close_rel(f.c[1], v[12]) && close_rel(f.c[2], v[13]) &&
-           close_rel(pdf, v[14]);
-}
-
-static int sample_agrees(const mt_bsdf *b, const double *v, mt_vec3 wo, const mt_real *u, double *dw)
-{
-    mt_bsdf_sample s = mt_bsdf_sample_f(b, wo, u[0], u[1], u[2], MT_BSDF_ALL);
-    *dw = fmax(fabs(s.wi.x - v[5]), fmax(fabs(s.wi.y - v[6]), fabs(s.wi.z - v[7])));
-    return *dw <= 1e-5 && close_rel(s.f.c[0], v[11]) && close_rel(s.f.c[1], v[12]) &&
-           close_rel(s.f.c[2], v[13]) && close_rel(s.pdf, v[14]) && (int)s.type == (int)v[15];
-}
-
-/* The row agrees within tolerance, for pbrt-v2's (float) inputs. */
-static int row_agrees(const mt_bsdf *b, int eval, const double *v, double *dw)
-{
-    mt_real in[9];
-    int i, ok;
-    /* pbrt-v2's inputs were floats: round them so the double build sees them */
-    for (i = 0; i < 6; ++i) in[i] = to_float(v[2 + i]);
-    for (i = 0; i < 3; ++i) in[6 + i] = to_float(v[8 + i]);
-#define CALL(p) (eval ? eval_agrees(b, v, mt_v3(p[0], p[1], p[2]), mt_v3(p[3], p[4], p[5])) \
-                         : sample_agrees(b, v, mt_v3(p[0], p[1], p[2]), p + 6, dw))
-    ok = CALL(in);
-#undef CALL
-    return ok;
-}
-
 int main(void)
 {
     const char *shared = t_shared_dir();
@@ -179,21 +135,12 @@ int main(void)
             break;
         }
         while (fgets(line, sizeof line, fp)) {
-            char *f[16], *p = line;
-            int n = 0;
-            double v[16] = {0};
+            t_bsdf_row row;
             mt_bsdf *b;
             mt_error err;
             mt_vec3 ng = configs[c].tilted ? mt_v3(0.287347883f, 0, 0.957826257f) : mt_v3(0, 0, 1);
-            line[strcspn(line, "\r\n")] = 0;
-            while (n < 16) {
-                f[n++] = p;
-                p = strchr(p, ',');
-                if (!p) break;
-                *p++ = 0;
-            }
-            if (n < 16 || strcmp(f[0], configs[c].id)) continue;
-            for (n = 2; n < 16; ++n) v[n] = *f[n] ? atof(f[n]) : 0;
+            double dw = 0;
+            if (!t_bsdf_row_parse(line, &row) || strcmp(row.id, configs[c].id)) continue;
             mt_arena_reset(arena);
             mt_error_clear(&err);
             if (configs[c].build(&b, arena, ng, &err)) {
@@ -202,30 +149,11 @@ int main(void)
                 break;
             }
             rows++;
-            {
-                int eval = !strcmp(f[1], "eval");
-                double dw = 0;
-                if (!row_agrees(b, eval, v, &dw)) {
-                    bad++;
-                    if (shown++ < 3) {
-                        mt_vec3 wo = mt_v3(v[2], v[3], v[4]), wi = mt_v3(v[5], v[6], v[7]);
-                        if (eval) {
-                            mt_rgb fv = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
-                            printf("  %s eval row %d: f %.9g pdf %.9g; pbrt-v2 f %.9g pdf %.9g\n",
-                                   configs[c].id, rows, fv.c[0], mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL),
-                                   v[11], v[14]);
-                        } else {
-                            mt_bsdf_sample sm = mt_bsdf_sample_f(b, wo, (float)v[8], (float)v[9],
-                                                                 (float)v[10], MT_BSDF_ALL);
-                            printf("  %s sample row %d: wi %.9g %.9g %.9g f %.9g pdf %.9g type %u;"
-                                   " pbrt-v2 %.9g %.9g %.9g f %.9g pdf %.9g type %d\n",
-                                   configs[c].id, rows, sm.wi.x, sm.wi.y, sm.wi.z, sm.f.c[0],
-                                   sm.pdf, sm.type, v[5], v[6], v[7], v[11], v[14], (int)v[15]);
-                        }
-                    }
-                }
-                if (dw > worst) worst = dw;
+            if (!t_bsdf_row_agrees(b, &row, shown < 3, &dw)) {
+                bad++;
+                shown++;
             }
+            if (dw > worst) worst = dw;
         }
         fclose(fp);
         snprintf(name, sizeof name, "pbrt-v2 values %s (hand-built BxDFs)", configs[c].id);

@@ -26,6 +26,7 @@ typedef unsigned mt_mode;
 #define MT_FIX_GLOSSY_SAMPLE_PDF   (1u << 4)  /* non-zero pdf below the horizon */
 #define MT_FIX_TANGENT_PLANE       (1u << 5)  /* grazing directions count as transmission */
 #define MT_FIX_BSDF_FRAME          (1u << 6)  /* frame not orthonormal for oblique dpdu */
+#define MT_FIX_MEASURED_SYMMETRY   (1u << 7)  /* BRDFRemap rounds (wo, wi) and (wi, wo) apart */
 /* Material layer */
 #define MT_FIX_DIELECTRIC_SIDE     (1u << 8)  /* FresnelDielectric(1.5, 1) in plastic & co */
 #define MT_FIX_UBER_OPACITY        (1u << 9)  /* opacity > 1: negative transmission */
@@ -44,8 +45,8 @@ typedef unsigned mt_mode;
 #define MT_MODE_CORRECTED                                                                   \
     (MT_FIX_SCALED_PDF | MT_FIX_MICROFACET_FRESNEL | MT_FIX_RHO_LOCAL |                     \
      MT_FIX_ANISOTROPIC_NORMAL | MT_FIX_GLOSSY_SAMPLE_PDF | MT_FIX_TANGENT_PLANE |          \
-     MT_FIX_BSDF_FRAME | MT_FIX_DIELECTRIC_SIDE | MT_FIX_UBER_OPACITY |                     \
-     MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX | MT_FIX_MAPPING_3D |                     \
+     MT_FIX_BSDF_FRAME | MT_FIX_MEASURED_SYMMETRY | MT_FIX_DIELECTRIC_SIDE |                \
+     MT_FIX_UBER_OPACITY | MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX | MT_FIX_MAPPING_3D | \
      MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS | MT_FIX_DOTS_INSIDE)
 
 /* One entry of the errata catalog. bit is 0 for entries that materia fixes in

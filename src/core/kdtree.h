@@ -1,0 +1,54 @@
+/*
+ * Internal: pbrt-v2's point k-d tree (core/kdtree.h), which the irregular
+ * measured BRDF searches for the samples near a remapped direction pair.
+ *
+ * Build (KdTree::recursiveBuild): a node per point; a node's points are split
+ * on the axis of greatest extent of their bounding box at the median, the
+ * point of rank (start + end) / 2 in the order "coordinate, then original
+ * index" (pbrt-v2 breaks ties by the points' addresses in its input array,
+ * which is the same order), and that point is stored in the node. Nodes are
+ * numbered depth first: the left child follows its parent, the right child
+ * takes the next free number after the left subtree. The tree is therefore
+ * the same as pbrt-v2's, whatever selection algorithm finds the medians.
+ *
+ * Lookup (KdTree::privateLookup): children first, the side of the split that
+ * holds the query point, then the other side if the squared distance to the
+ * splitting plane is below *max_d2; then the node's own point, handed to the
+ * callback if its squared distance is below *max_d2 (strictly). The callback
+ * may shrink *max_d2. Visiting in pbrt-v2's order keeps its sums' rounding.
+ */
+#ifndef MT_CORE_KDTREE_H
+#define MT_CORE_KDTREE_H
+
+#include <stdint.h>
+#include "materia/error.h"
+
+typedef struct mt__kdnode {
+    mt_real p[3];     /* the node's point */
+    mt_real split;    /* the split position on axis (interior nodes) */
+    uint32_t right;   /* the right child's number, or MT__KD_NONE */
+    int32_t item;     /* the point's index in the build input */
+    uint8_t axis;     /* 0, 1, 2; 3 for a leaf */
+    uint8_t has_left; /* the left child is node number + 1 */
+} mt__kdnode;
+
+#define MT__KD_NONE UINT32_MAX
+
+typedef struct mt__kdtree {
+    mt__kdnode *nodes;
+    int n;
+} mt__kdtree;
+
+/* Builds the tree of the n points (x, y, z triples; finite). n may be 0 (an
+ * empty tree). MT_ERR_NOMEM with err filled when memory is exhausted. */
+mt_status mt__kdtree_build(mt__kdtree *t, const mt_real *points, int n, mt_error *err);
+void mt__kdtree_free(mt__kdtree *t);
+
+/* Called for each point within the search radius: its index in the build
+ * input and its squared distance to the query point. */
+typedef void (*mt__kdtree_proc)(void *ctx, int item, mt_real d2, mt_real *max_d2);
+
+void mt__kdtree_lookup(const mt__kdtree *t, const mt_real p[3], mt__kdtree_proc proc, void *ctx,
+                       mt_real *max_d2);
+
+#endif
