@@ -64,7 +64,7 @@ static const cf_subject materials[] = {
     M("metal default (copper)", LE1, 0, 100, "Material \"metal\""),
     M("metal roughness=0.3", LE1, 0, 3.4, "Material \"metal\" \"float roughness\" [.3]"),
     M("shinymetal default (additive, ~1.9)", 0, 0, 10, "Material \"shinymetal\""),
-    M("shinymetal Ks=0.3 Kr=0.3", LE1, 0, 10, "Material \"shinymetal\" \"rgb Ks\" [.3 .3 .3] \"rgb Kr\" [.3 .3 .3]"),
+    M("shinymetal Ks=0.3 Kr=0.3 (additive at grazing)", 0, 0, 10, "Material \"shinymetal\" \"rgb Ks\" [.3 .3 .3] \"rgb Kr\" [.3 .3 .3]"),
     M("substrate default", LE1, 0, 10, "Material \"substrate\""),
     M("substrate u=0.01 v=0.5", LE1, 0, 100, "Material \"substrate\" \"float uroughness\" [.01] \"float vroughness\" [.5]"),
     M("translucent default", LE1 | BOTH, 0, 10, "Material \"translucent\""),
@@ -83,7 +83,7 @@ static const cf_subject materials[] = {
       "Material \"mix\" \"string namedmaterial1\" \"g\" \"string namedmaterial2\" \"m\""),
     M("subsurface default", LE1 | DELTA, 0, 0, "Material \"subsurface\""),
     M("kdsubsurface default", LE1 | DELTA, 0, 0, "Material \"kdsubsurface\""),
-    M("matte with a bump map", LE1, 0, 0,
+    M("matte with a bump map", LE1 | CF_SHADING_GAP, 0, 0,
       "Texture \"w\" \"float\" \"wrinkled\" \"float scale\" [0.3] Material \"matte\" \"texture bumpmap\" \"w\" \"rgb Kd\" [1 1 1]"),
 };
 
