@@ -1,0 +1,63 @@
+/*
+ * Internal: the geometry record and its BVH.
+ *
+ * The BVH is binary, flattened depth-first into one array of 64-byte nodes
+ * (float build) that hold the bounding boxes of both children, so that one
+ * node visit tests two boxes and the nearer child is taken first. Leaves
+ * hold up to MT__BVH_LEAF_MAX primitives of one kind: triangles (their three
+ * world-space vertices copied in leaf order, 9 reals each, next to one
+ * another) or quadrics (the shape pointer).
+ */
+#ifndef MT_TRACER_BVH_H
+#define MT_TRACER_BVH_H
+
+#include "tracer/shape_impl.h"
+
+#define MT__BVH_LEAF_MAX 8
+/* Depth at which the builder stops using the SAH and splits at the median,
+ * so that the tree is never deeper than MT__BVH_STACK (the traversal stack). */
+#define MT__BVH_SAH_DEPTH 48
+#define MT__BVH_STACK 96
+
+enum { MT__LEAF_TRIS = 1, MT__LEAF_QUADRICS = 2 };
+
+/* A child: an inner node (kind 0, index into nodes) or a leaf (kind > 0,
+ * count primitives from index on in the leaf arrays of that kind). */
+typedef struct mt__bvh_ref {
+    uint32_t index;
+    uint16_t count;
+    uint16_t kind;
+} mt__bvh_ref;
+
+typedef struct mt__bvh_node {
+    /* rows lo.x, hi.x, lo.y, hi.y, lo.z, hi.z; columns: child 0, child 1 */
+    mt_real b[6][2];
+    mt__bvh_ref c[2];
+} mt__bvh_node;
+
+struct mt_geometry {
+    mt_shape **shapes;
+    uint32_t nshapes, cap;
+    uint32_t *base; /* first global primitive id of each shape; base[nshapes] = total */
+    int committed;
+
+    mt__bvh_node *nodes;
+    void *nodes_mem; /* nodes, before alignment */
+    uint32_t nnodes;
+    mt__bvh_ref root;
+    mt_real root_box[6]; /* lo.x, hi.x, lo.y, hi.y, lo.z, hi.z */
+
+    mt_real *tri;      /* 9 reals per triangle, in leaf order */
+    uint32_t *tri_id;  /* global primitive ids, in leaf order */
+    uint32_t ntri;
+    const mt_shape **quad; /* quadric shapes, in leaf order */
+    uint32_t *quad_id;
+    uint32_t nquad;
+    mt_bvh_stats stats;
+};
+
+/* Builds the BVH of g's shapes (bvh_build.c). */
+mt_status mt__bvh_build(mt_geometry *g, mt_error *err);
+void mt__bvh_free(mt_geometry *g);
+
+#endif
