@@ -1,12 +1,14 @@
 /*
  * Internal: the geometry record and its BVH.
  *
- * The BVH is binary, flattened depth-first into one array of 64-byte nodes
- * (float build) that hold the bounding boxes of both children, so that one
- * node visit tests two boxes and the nearer child is taken first. Leaves
- * hold up to MT__BVH_LEAF_MAX primitives of one kind: triangles (their three
- * world-space vertices copied in leaf order, 9 reals each, next to one
- * another) or quadrics (the shape pointer).
+ * The BVH is four-wide (Dammertz et al., "Shallow Bounding Volume
+ * Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", 2008; Embree's
+ * BVH4): each node holds the bounding boxes of its up to four children in
+ * structure-of-arrays form, so that one visit tests four boxes with the same
+ * arithmetic in four lanes, and the nodes are stored depth-first in one
+ * array. Leaves hold up to MT__BVH_LEAF_MAX primitives of one kind:
+ * triangles (their three world-space vertices copied in leaf order, 9 reals
+ * each, next to one another) or quadrics (the shape pointer).
  */
 #ifndef MT_TRACER_BVH_H
 #define MT_TRACER_BVH_H
@@ -14,15 +16,17 @@
 #include "tracer/shape_impl.h"
 
 #define MT__BVH_LEAF_MAX 8
-/* Depth at which the builder stops using the SAH and splits at the median,
- * so that the tree is never deeper than MT__BVH_STACK (the traversal stack). */
-#define MT__BVH_SAH_DEPTH 48
-#define MT__BVH_STACK 96
+/* Depth (in four-wide levels) at which the builder stops using the SAH and
+ * splits at the median; each later level at least halves the largest range,
+ * so the tree is at most 24 + 32 levels deep and the traversal stack (at
+ * most 3 entries per level) never overflows. */
+#define MT__BVH_SAH_DEPTH 24
+#define MT__BVH_STACK 192
 
 enum { MT__LEAF_TRIS = 1, MT__LEAF_QUADRICS = 2 };
 
-/* A child: an inner node (kind 0, index into nodes) or a leaf (kind > 0,
- * count primitives from index on in the leaf arrays of that kind). */
+/* A child: an inner node (count 0, index into nodes) or a leaf (count
+ * primitives of kind from index on in the leaf arrays of that kind). */
 typedef struct mt__bvh_ref {
     uint32_t index;
     uint16_t count;
@@ -30,9 +34,10 @@ typedef struct mt__bvh_ref {
 } mt__bvh_ref;
 
 typedef struct mt__bvh_node {
-    /* rows lo.x, hi.x, lo.y, hi.y, lo.z, hi.z; columns: child 0, child 1 */
-    mt_real b[6][2];
-    mt__bvh_ref c[2];
+    /* rows lo.x, hi.x, lo.y, hi.y, lo.z, hi.z; columns: the four children
+     * (an empty slot has lo = +max > hi = -max and is never entered) */
+    mt_real b[6][4];
+    mt__bvh_ref c[4]; /* float build: 128 bytes, two cache lines */
 } mt__bvh_node;
 
 struct mt_geometry {
@@ -46,6 +51,7 @@ struct mt_geometry {
     uint32_t nnodes;
     mt__bvh_ref root;
     mt_real root_box[6]; /* lo.x, hi.x, lo.y, hi.y, lo.z, hi.z */
+    mt__bvh_node root_node; /* the root box in its first lane, for the first test */
 
     mt_real *tri;      /* 9 reals per triangle, in leaf order */
     uint32_t *tri_id;  /* global primitive ids, in leaf order */

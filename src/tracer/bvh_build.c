@@ -1,22 +1,24 @@
 /*
- * The BVH builder: top-down, binned SAH (Wald, "On fast Construction of
- * SAH-based Bounding Volume Hierarchies", 2007) over all three axes, with
- * an explicit work stack; the nodes come out depth-first (a node's first
- * child follows it) and the leaves' primitives are copied into contiguous
- * arrays in the order traversal reads them.
+ * The BVH builder: top-down binned SAH (Wald, "On fast Construction of
+ * SAH-based Bounding Volume Hierarchies", 2007) over all three axes in one
+ * pass, with an explicit work stack. A four-wide node is made by splitting
+ * its range in two and then splitting the child of largest surface area
+ * again until there are four children or none is worth splitting (the
+ * collapse of a binary SAH tree, done on the fly). Nodes come out
+ * depth-first, and the leaves' primitives are copied into contiguous arrays
+ * in the order traversal reads them.
  *
- * Cost model: visiting a node (two box tests) costs about one triangle
- * test, MT__BVH_TRAVERSAL_COST; a leaf costs its primitive count. A range is
- * a leaf when it is small enough and splitting does not pay; ranges whose
- * centroids coincide are halved by index; below depth MT__BVH_SAH_DEPTH
- * the median is taken, which bounds the depth by the traversal stack.
+ * Cost model of a binary split: a node visit costs MT__BVH_TRAVERSAL_COST
+ * triangle tests; a leaf costs its primitive count. A range is a leaf when
+ * it is small enough and no split pays; ranges whose centroids coincide are
+ * halved by index; from depth MT__BVH_SAH_DEPTH on the median is taken.
  */
 #include <string.h>
 #include "core/alloc.h"
 #include "tracer/bvh.h"
 
 #define NBINS 16
-#define MT__BVH_TRAVERSAL_COST 1.0
+#define MT__BVH_TRAVERSAL_COST 3.0
 
 typedef struct prim {
     mt_real lo[3], hi[3], c[3];
@@ -24,15 +26,33 @@ typedef struct prim {
     int quad;
 } prim;
 
-typedef struct task {
-    uint32_t start, end, depth;
-    int32_t parent; /* node index, -1 for the root */
-    int slot;
-} task;
-
 typedef struct box {
     mt_real lo[3], hi[3];
 } box;
+
+enum { HOW_LEAF, HOW_SAH, HOW_KIND, HOW_MEDIAN };
+
+/* A range of primitives and what to do with it. */
+typedef struct range {
+    uint32_t start, end, nquad;
+    box bb, cb; /* bounds of the primitives and of their centroids */
+    int how, axis, bin; /* HOW_SAH: left = bins <= bin on axis; HOW_MEDIAN: axis, -1 by index */
+} range;
+
+typedef struct task {
+    range r;
+    int32_t parent; /* node index, -1 for the root */
+    int slot;
+    uint32_t depth;
+} task;
+
+typedef struct builder {
+    mt_geometry *g;
+    prim *p;
+    task *stack;
+    uint32_t nstack, stack_cap;
+    double root_area;
+} builder;
 
 static void box_empty(box *b)
 {
@@ -46,8 +66,8 @@ static void box_add(box *b, const mt_real lo[3], const mt_real hi[3])
 {
     int i;
     for (i = 0; i < 3; ++i) {
-        if (lo[i] < b->lo[i]) b->lo[i] = lo[i];
-        if (hi[i] > b->hi[i]) b->hi[i] = hi[i];
+        b->lo[i] = lo[i] < b->lo[i] ? lo[i] : b->lo[i];
+        b->hi[i] = hi[i] > b->hi[i] ? hi[i] : b->hi[i];
     }
 }
 /* Half the surface area (the SAH only needs ratios); 0 when empty. */
@@ -59,70 +79,104 @@ static double box_area(const box *b)
     return dx * dy + dy * dz + dz * dx;
 }
 
-typedef struct builder {
-    mt_geometry *g;
-    prim *p;
-    task *stack;
-    uint32_t nstack, stack_cap;
-    double root_area;
-} builder;
-
+static mt_real bin_scale(const box *cb, int a)
+{
+    mt_real ext = cb->hi[a] - cb->lo[a];
+    return ext > 0 ? (mt_real)NBINS * (1 - (mt_real)1e-6) / ext : 0;
+}
 static int bin_of(mt_real c, mt_real cmin, mt_real k)
 {
     int b = (int)((c - cmin) * k);
     return b < 0 ? 0 : (b >= NBINS ? NBINS - 1 : b);
 }
 
-typedef struct split {
-    int axis, bin; /* bin: the last bin of the left side; axis -1: none */
-    double cost;
-} split;
-
-/* The cheapest of the NBINS - 1 planes on each axis, by binned SAH. */
-static split find_split(const prim *p, uint32_t n, const box *cb, double area)
+/* The cheapest of the NBINS - 1 planes on each axis, binned in one pass;
+ * *cost is the SAH cost of the best split (1e300 when there is none). */
+static void find_split(const prim *p, uint32_t n, const box *cb, double area, int *axis,
+                       int *bin, double *cost)
 {
-    split best;
+    box bins[3][NBINS];
+    uint32_t cnt[3][NBINS], j;
+    mt_real k[3];
     int a, i;
-    best.axis = -1;
-    best.bin = 0;
-    best.cost = 1e300;
+    *axis = -1;
+    *bin = 0;
+    *cost = 1e300;
     for (a = 0; a < 3; ++a) {
-        box bins[NBINS], acc;
-        uint32_t cnt[NBINS], j, left;
-        double right_cost[NBINS];
-        mt_real ext = cb->hi[a] - cb->lo[a], k;
-        if (!(ext > 0)) continue;
-        k = (mt_real)NBINS * (1 - (mt_real)1e-6) / ext;
+        k[a] = bin_scale(cb, a);
         for (i = 0; i < NBINS; ++i) {
-            box_empty(&bins[i]);
-            cnt[i] = 0;
+            box_empty(&bins[a][i]);
+            cnt[a][i] = 0;
         }
-        for (j = 0; j < n; ++j) {
-            int b = bin_of(p[j].c[a], cb->lo[a], k);
-            cnt[b]++;
-            box_add(&bins[b], p[j].lo, p[j].hi);
+    }
+    for (j = 0; j < n; ++j)
+        for (a = 0; a < 3; ++a) {
+            int b = bin_of(p[j].c[a], cb->lo[a], k[a]);
+            cnt[a][b]++;
+            box_add(&bins[a][b], p[j].lo, p[j].hi);
+        }
+    for (a = 0; a < 3; ++a) {
+        box acc;
+        double right[NBINS];
+        uint32_t nr = 0, nl = 0;
+        if (k[a] == 0) continue;
+        box_empty(&acc);
+        for (i = NBINS - 1; i > 0; --i) {
+            box_add(&acc, bins[a][i].lo, bins[a][i].hi);
+            nr += cnt[a][i];
+            right[i] = box_area(&acc) * nr;
         }
         box_empty(&acc);
-        for (i = NBINS - 1, j = 0; i > 0; --i) {
-            box_add(&acc, bins[i].lo, bins[i].hi);
-            j += cnt[i];
-            right_cost[i] = box_area(&acc) * j;
-        }
-        box_empty(&acc);
-        for (i = 0, left = 0; i < NBINS - 1; ++i) {
+        for (i = 0; i < NBINS - 1; ++i) {
             double c;
-            box_add(&acc, bins[i].lo, bins[i].hi);
-            left += cnt[i];
-            if (left == 0 || left == n) continue;
-            c = MT__BVH_TRAVERSAL_COST + (box_area(&acc) * left + right_cost[i + 1]) / area;
-            if (c < best.cost) {
-                best.cost = c;
-                best.axis = a;
-                best.bin = i;
+            box_add(&acc, bins[a][i].lo, bins[a][i].hi);
+            nl += cnt[a][i];
+            if (nl == 0 || nl == n) continue;
+            c = MT__BVH_TRAVERSAL_COST + (box_area(&acc) * nl + right[i + 1]) / area;
+            if (c < *cost) {
+                *cost = c;
+                *axis = a;
+                *bin = i;
             }
         }
     }
-    return best;
+}
+
+/* Bounds of the range and the decision about it. */
+static void analyze(builder *b, range *r, uint32_t depth)
+{
+    const prim *p = b->p + r->start;
+    uint32_t n = r->end - r->start, i;
+    double area, cost = 1e300;
+    int a;
+    box_empty(&r->bb);
+    box_empty(&r->cb);
+    r->nquad = 0;
+    for (i = 0; i < n; ++i) {
+        box_add(&r->bb, p[i].lo, p[i].hi);
+        box_add(&r->cb, p[i].c, p[i].c);
+        r->nquad += p[i].quad != 0;
+    }
+    r->axis = -1;
+    r->bin = 0;
+    area = box_area(&r->bb);
+    if (n > 1 && depth < MT__BVH_SAH_DEPTH && area > 0)
+        find_split(p, n, &r->cb, area, &r->axis, &r->bin, &cost);
+    if (n == 1 || (n <= MT__BVH_LEAF_MAX && (r->nquad == 0 || r->nquad == n) && cost >= n)) {
+        r->how = HOW_LEAF;
+    } else if (n <= MT__BVH_LEAF_MAX && r->nquad > 0 && r->nquad < n) {
+        r->how = HOW_KIND;
+    } else if (r->axis >= 0) {
+        r->how = HOW_SAH;
+    } else {
+        /* no useful plane (coincident centroids, or too deep for the SAH):
+         * the median of the widest centroid extent, or halves by index */
+        r->how = HOW_MEDIAN;
+        for (a = 0; a < 3; ++a)
+            if (r->cb.hi[a] > r->cb.lo[a] &&
+                (r->axis < 0 || r->cb.hi[a] - r->cb.lo[a] > r->cb.hi[r->axis] - r->cb.lo[r->axis]))
+                r->axis = a;
+    }
 }
 
 static void swap_prims(prim *a, prim *b)
@@ -130,27 +184,6 @@ static void swap_prims(prim *a, prim *b)
     prim t = *a;
     *a = *b;
     *b = t;
-}
-
-/* Moves the primitives for which pred holds to the front; returns their count. */
-static uint32_t partition_bins(prim *p, uint32_t n, int axis, int last_bin, const box *cb)
-{
-    mt_real k = (mt_real)NBINS * (1 - (mt_real)1e-6) / (cb->hi[axis] - cb->lo[axis]);
-    uint32_t i = 0, j = n;
-    while (i < j) {
-        if (bin_of(p[i].c[axis], cb->lo[axis], k) <= last_bin) ++i;
-        else swap_prims(&p[i], &p[--j]);
-    }
-    return i;
-}
-static uint32_t partition_kind(prim *p, uint32_t n)
-{
-    uint32_t i = 0, j = n;
-    while (i < j) {
-        if (!p[i].quad) ++i;
-        else swap_prims(&p[i], &p[--j]);
-    }
-    return i;
 }
 
 /* Quickselect: p[m] gets the element of rank m by centroid on axis, smaller
@@ -177,8 +210,38 @@ static void nth_element(prim *p, uint32_t n, uint32_t m, int axis)
     }
 }
 
-static mt_status push(builder *b, uint32_t start, uint32_t end, uint32_t depth, int32_t parent,
-                      int slot, mt_error *err)
+/* Splits r (not a leaf) into two analyzed ranges. */
+static void apply_split(builder *b, const range *r, uint32_t depth, range *left, range *right)
+{
+    prim *p = b->p + r->start;
+    uint32_t n = r->end - r->start, i = 0, j = n, mid;
+    if (r->how == HOW_SAH) {
+        mt_real k = bin_scale(&r->cb, r->axis), lo = r->cb.lo[r->axis];
+        while (i < j) {
+            if (bin_of(p[i].c[r->axis], lo, k) <= r->bin) ++i;
+            else swap_prims(&p[i], &p[--j]);
+        }
+        mid = i;
+    } else if (r->how == HOW_KIND) {
+        while (i < j) {
+            if (!p[i].quad) ++i;
+            else swap_prims(&p[i], &p[--j]);
+        }
+        mid = i;
+    } else {
+        mid = n / 2;
+        if (r->axis >= 0) nth_element(p, n, mid, r->axis);
+    }
+    if (mid == 0 || mid == n) mid = n / 2; /* cannot happen; keeps the build finite */
+    left->start = r->start;
+    left->end = right->start = r->start + mid;
+    right->end = r->end;
+    analyze(b, left, depth);
+    analyze(b, right, depth);
+}
+
+static mt_status push(builder *b, const range *r, int32_t parent, int slot, uint32_t depth,
+                      mt_error *err)
 {
     task *t;
     if (b->nstack == b->stack_cap) {
@@ -189,19 +252,18 @@ static mt_status push(builder *b, uint32_t start, uint32_t end, uint32_t depth, 
         b->stack_cap = cap;
     }
     t = &b->stack[b->nstack++];
-    t->start = start;
-    t->end = end;
-    t->depth = depth;
+    t->r = *r;
     t->parent = parent;
     t->slot = slot;
+    t->depth = depth;
     return MT_OK;
 }
 
-static void emit_leaf(builder *b, const task *t, mt__bvh_ref *ref)
+static void emit_leaf(builder *b, const range *r, mt__bvh_ref *ref)
 {
     mt_geometry *g = b->g;
-    uint32_t i, n = t->end - t->start;
-    const prim *p = b->p + t->start;
+    uint32_t i, n = r->end - r->start;
+    const prim *p = b->p + r->start;
     if (p[0].quad) {
         ref->index = g->nquad;
         ref->kind = MT__LEAF_QUADRICS;
@@ -228,77 +290,55 @@ static void emit_leaf(builder *b, const task *t, mt__bvh_ref *ref)
     ref->count = (uint16_t)n;
     g->stats.leaves++;
     if (n > g->stats.max_leaf_prims) g->stats.max_leaf_prims = n;
+    if (b->root_area > 0) g->stats.sah_cost += n * box_area(&r->bb) / b->root_area;
 }
 
-static mt_status build_task(builder *b, const task *t, mt_error *err)
+/* One four-wide node from a range that is not a leaf. */
+static mt_status build_node(builder *b, const task *t, mt_error *err)
 {
     mt_geometry *g = b->g;
-    prim *p = b->p + t->start;
-    uint32_t n = t->end - t->start, i, nquad = 0, mid;
-    box bb, cb;
-    mt__bvh_ref *ref, node_ref;
-    double area;
-    int a;
-    split s;
-
-    box_empty(&bb);
-    box_empty(&cb);
-    for (i = 0; i < n; ++i) {
-        box_add(&bb, p[i].lo, p[i].hi);
-        box_add(&cb, p[i].c, p[i].c);
-        nquad += p[i].quad != 0;
-    }
-    if (t->parent < 0) {
-        for (a = 0; a < 3; ++a) {
-            g->root_box[2 * a] = bb.lo[a];
-            g->root_box[2 * a + 1] = bb.hi[a];
-        }
-        ref = &g->root;
-    } else {
-        mt__bvh_node *pn = &g->nodes[t->parent];
-        for (a = 0; a < 3; ++a) {
-            pn->b[2 * a][t->slot] = bb.lo[a];
-            pn->b[2 * a + 1][t->slot] = bb.hi[a];
-        }
-        ref = &pn->c[t->slot];
-    }
-    if (t->depth > g->stats.max_depth) g->stats.max_depth = t->depth;
-    area = box_area(&bb);
-
-    s.axis = -1;
-    s.cost = 1e300;
-    if (n > 1 && t->depth < MT__BVH_SAH_DEPTH && area > 0) s = find_split(p, n, &cb, area);
-    if (n == 1 || (n <= MT__BVH_LEAF_MAX && (nquad == 0 || nquad == n) && s.cost >= n)) {
-        emit_leaf(b, t, ref);
-        b->g->stats.sah_cost += area > 0 && b->root_area > 0 ? n * area / b->root_area : 0;
-        return MT_OK;
-    }
-    if (n <= MT__BVH_LEAF_MAX && nquad > 0 && nquad < n) {
-        mid = partition_kind(p, n);
-    } else if (s.axis >= 0) {
-        mid = partition_bins(p, n, s.axis, s.bin, &cb);
-    } else {
-        /* no useful plane (coincident centroids, or too deep for the SAH):
-         * halve at the median of the widest centroid extent */
-        int w = 0;
-        for (a = 1; a < 3; ++a)
-            if (cb.hi[a] - cb.lo[a] > cb.hi[w] - cb.lo[w]) w = a;
-        mid = n / 2;
-        if (cb.hi[w] > cb.lo[w]) nth_element(p, n, mid, w);
-    }
-    if (mid == 0 || mid == n) mid = n / 2; /* cannot happen; keeps the recursion finite */
-
-    node_ref.index = g->nnodes++;
-    node_ref.count = 0;
-    node_ref.kind = 0;
-    *ref = node_ref;
+    uint32_t idx = g->nnodes++, k;
+    mt__bvh_node *nd = &g->nodes[idx];
+    range ch[4];
+    int n = 1, i, a;
+    mt__bvh_ref *ref = t->parent < 0 ? &g->root : &g->nodes[t->parent].c[t->slot];
+    ref->index = idx;
+    ref->count = 0;
+    ref->kind = 0;
+    if (t->depth + 1 > g->stats.max_depth) g->stats.max_depth = t->depth + 1;
     g->stats.inner_nodes++;
-    if (b->root_area > 0) g->stats.sah_cost += MT__BVH_TRAVERSAL_COST * area / b->root_area;
-    /* the right half is pushed first so that the left is built next and
-     * its node follows this one */
-    if (push(b, t->start + mid, t->end, t->depth + 1, (int32_t)node_ref.index, 1, err) != MT_OK ||
-        push(b, t->start, t->start + mid, t->depth + 1, (int32_t)node_ref.index, 0, err) != MT_OK)
-        return MT_ERR_NOMEM;
+    if (b->root_area > 0) g->stats.sah_cost += MT__BVH_TRAVERSAL_COST * box_area(&t->r.bb) / b->root_area;
+    ch[0] = t->r;
+    while (n < 4) {
+        int best = -1;
+        double best_area = -1;
+        for (i = 0; i < n; ++i)
+            if (ch[i].how != HOW_LEAF && box_area(&ch[i].bb) > best_area) {
+                best = i;
+                best_area = box_area(&ch[i].bb);
+            }
+        if (best < 0) break;
+        {
+            range whole = ch[best];
+            apply_split(b, &whole, t->depth + 1, &ch[best], &ch[n]);
+            ++n;
+        }
+    }
+    for (i = 0; i < 4; ++i)
+        for (a = 0; a < 3; ++a) {
+            nd->b[2 * a][i] = i < n ? ch[i].bb.lo[a] : MT_REAL_MAX;
+            nd->b[2 * a + 1][i] = i < n ? ch[i].bb.hi[a] : -MT_REAL_MAX;
+        }
+    memset(nd->c, 0, sizeof nd->c);
+    for (i = 0; i < n; ++i)
+        if (ch[i].how == HOW_LEAF) emit_leaf(b, &ch[i], &nd->c[i]);
+    /* inner children in reverse, so that the first is built next and its
+     * node follows this one */
+    for (k = (uint32_t)n; k-- > 0;)
+        if (ch[k].how != HOW_LEAF) {
+            mt_status st = push(b, &ch[k], (int32_t)idx, (int)k, t->depth + 1, err);
+            if (st != MT_OK) return st;
+        }
     return MT_OK;
 }
 
@@ -331,7 +371,8 @@ static mt_status gather(builder *b, mt_error *err)
     g->tri_id = mt__malloc(((size_t)ntri + 1) * sizeof *g->tri_id);
     g->quad = mt__malloc(((size_t)nquad + 1) * sizeof *g->quad);
     g->quad_id = mt__malloc(((size_t)nquad + 1) * sizeof *g->quad_id);
-    /* at most total - 1 inner nodes; 64-byte alignment for the cache lines */
+    /* each node has at least two children: at most total - 1 nodes;
+     * 64-byte alignment for the cache lines */
     g->nodes_mem = mt__malloc(((size_t)total + 1) * sizeof *g->nodes + 64);
     if (!g->tri || !g->tri_id || !g->quad || !g->quad_id || !g->nodes_mem)
         return mt_error_set(err, MT_ERR_NOMEM, "out of memory building the BVH");
@@ -363,20 +404,33 @@ mt_status mt__bvh_build(mt_geometry *g, mt_error *err)
     memset(&b, 0, sizeof b);
     memset(&g->stats, 0, sizeof g->stats);
     b.g = g;
-    g->root.index = 0;
-    g->root.count = 0;
-    g->root.kind = 0;
+    memset(&g->root, 0, sizeof g->root);
     if (total == 0) return MT_OK;
     if ((st = gather(&b, err)) == MT_OK) {
-        box rb;
-        uint32_t i;
-        box_empty(&rb);
-        for (i = 0; i < total; ++i) box_add(&rb, b.p[i].lo, b.p[i].hi);
-        b.root_area = box_area(&rb);
-        st = push(&b, 0, total, 0, -1, 0, err);
+        range all;
+        int a;
+        all.start = 0;
+        all.end = total;
+        analyze(&b, &all, 0);
+        b.root_area = box_area(&all.bb);
+        memset(&g->root_node, 0, sizeof g->root_node);
+        for (a = 0; a < 3; ++a) {
+            int k;
+            g->root_box[2 * a] = all.bb.lo[a];
+            g->root_box[2 * a + 1] = all.bb.hi[a];
+            for (k = 0; k < 4; ++k) {
+                g->root_node.b[2 * a][k] = k == 0 ? all.bb.lo[a] : MT_REAL_MAX;
+                g->root_node.b[2 * a + 1][k] = k == 0 ? all.bb.hi[a] : -MT_REAL_MAX;
+            }
+        }
+        if (all.how == HOW_LEAF) {
+            emit_leaf(&b, &all, &g->root);
+        } else {
+            st = push(&b, &all, -1, 0, 0, err);
+        }
         while (st == MT_OK && b.nstack > 0) {
             task t = b.stack[--b.nstack];
-            st = build_task(&b, &t, err);
+            st = build_node(&b, &t, err);
         }
     }
     mt__free(b.p);

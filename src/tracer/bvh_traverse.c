@@ -3,20 +3,35 @@
  * recursion, no allocation: a fixed stack of (child, entry distance).
  *
  * Per ray the inverse direction, the slab order by direction sign and the
- * triangle test's shear are computed once. Each node visit tests both
- * children's boxes (Williams et al.'s slab test, robust after Ize, "Robust
- * BVH Ray Traversal", JCGT 2013: exit distances are scaled by 1 + 2
- * gamma(3), and a NaN from 0 * Inf -- a ray in a slab's plane -- is ignored
- * rather than propagated), descends into the nearer, and stacks the farther
- * with its entry distance, which is checked again when it is popped.
+ * triangle test's shear are computed once. A node visit computes the entry
+ * and exit distances of all four children with the same operations in four
+ * lanes (the loop the compiler turns into SIMD code), visits the nearest
+ * child hit and stacks the others, farthest first, with their entry
+ * distances, which are checked again when popped. The slab test is robust
+ * after Ize, "Robust BVH Ray Traversal", JCGT 2013: exit distances are
+ * scaled by 1 + 2 gamma(3), and a NaN from 0 * Inf -- a ray lying in a
+ * slab's plane -- is ignored rather than propagated.
  */
 #include "tracer/bvh.h"
 #include "tracer/triangle.h"
 
+/* The float build on x86-64 tests the four boxes of a node with SSE, part
+ * of the x86-64 baseline; other builds run the same arithmetic lane by lane
+ * (MT_NO_SIMD forces that). */
+#if !MT_USE_DOUBLE && defined(__SSE2__) && !defined(MT_NO_SIMD)
+#include <emmintrin.h>
+#define USE_SSE 1
+#else
+#define USE_SSE 0
+#endif
+
 typedef struct trav {
+#if USE_SSE
+    __m128 vo[3], vi[3], vf[3]; /* origin, inverse direction, its scaled copy */
+#endif
     mt__tri_ray tr;
-    mt_real o[3], inv[3];
-    int n0, n1, n2; /* rows of the near planes for x, y, z (the far ones: 1 - row parity) */
+    mt_real o[3], inv[3], inv_far[3];
+    int nx, ny, nz; /* rows of the near planes: 0/1, 2/3, 4/5 by direction sign */
     mt_real exit_scale, prune_scale;
 } trav;
 
@@ -28,10 +43,25 @@ static void trav_init(trav *t, const mt_ray *r)
     t->inv[0] = 1 / r->d.x;
     t->inv[1] = 1 / r->d.y;
     t->inv[2] = 1 / r->d.z;
-    t->n0 = t->inv[0] < 0 ? 1 : 0;
-    t->n1 = t->inv[1] < 0 ? 3 : 2;
-    t->n2 = t->inv[2] < 0 ? 5 : 4;
+    t->nx = t->inv[0] < 0 ? 1 : 0;
+    t->ny = t->inv[1] < 0 ? 3 : 2;
+    t->nz = t->inv[2] < 0 ? 5 : 4;
+    /* exit distances scaled by 1 + 2 gamma(3): folded into the inverse
+     * (the same number of roundings as scaling each distance) */
     t->exit_scale = 1 + 2 * mt__gamma(3);
+    t->inv_far[0] = t->inv[0] * t->exit_scale;
+    t->inv_far[1] = t->inv[1] * t->exit_scale;
+    t->inv_far[2] = t->inv[2] * t->exit_scale;
+#if USE_SSE
+    {
+        int i;
+        for (i = 0; i < 3; ++i) {
+            t->vo[i] = _mm_set1_ps(t->o[i]);
+            t->vi[i] = _mm_set1_ps(t->inv[i]);
+            t->vf[i] = _mm_set1_ps(t->inv_far[i]);
+        }
+    }
+#endif
     /* a node is skipped only when it starts beyond the current closest hit
      * by more than the error of either distance (a few ulps), so that equal
      * or nearly equal hits on box faces -- shared vertices and edges -- are
@@ -40,25 +70,62 @@ static void trav_init(trav *t, const mt_ray *r)
     mt__tri_ray_init(&t->tr, r);
 }
 
-/* Entry distance of the ray into child c of node b (within [tmin, tmax]), or
- * a value above tmax when it misses. */
-static inline mt_real child_entry(const trav *t, const mt_real (*b)[2], int c, mt_real tmin,
-                                  mt_real tmax)
+/* Entry distances of the ray into the four children within [tmin, tmax];
+ * returns the mask of children hit. Both versions drop a NaN candidate: the
+ * comparisons put it first, and SSE's max and min return their second
+ * operand when one is NaN. */
+#if USE_SSE
+static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 tmin, __m128 tmax,
+                                 mt_real tn_out[4])
 {
-    mt_real tn = tmin, tf = tmax, x;
-    x = (b[t->n0][c] - t->o[0]) * t->inv[0];
-    tn = x > tn ? x : tn;
-    x = (b[t->n1][c] - t->o[1]) * t->inv[1];
-    tn = x > tn ? x : tn;
-    x = (b[t->n2][c] - t->o[2]) * t->inv[2];
-    tn = x > tn ? x : tn;
-    x = (b[1 - t->n0][c] - t->o[0]) * t->inv[0] * t->exit_scale;
-    tf = x < tf ? x : tf;
-    x = (b[5 - t->n1][c] - t->o[1]) * t->inv[1] * t->exit_scale;
-    tf = x < tf ? x : tf;
-    x = (b[9 - t->n2][c] - t->o[2]) * t->inv[2] * t->exit_scale;
-    tf = x < tf ? x : tf;
-    return tn <= tf ? tn : MT_REAL_MAX;
+    __m128 a = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nx]), t->vo[0]), t->vi[0]);
+    __m128 b = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->ny]), t->vo[1]), t->vi[1]);
+    __m128 c = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nz]), t->vo[2]), t->vi[2]);
+    __m128 d = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nx ^ 1]), t->vo[0]), t->vf[0]);
+    __m128 e = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->ny ^ 1]), t->vo[1]), t->vf[1]);
+    __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nz ^ 1]), t->vo[2]), t->vf[2]);
+    __m128 n = _mm_max_ps(c, _mm_max_ps(b, _mm_max_ps(a, tmin)));
+    __m128 x = _mm_min_ps(f, _mm_min_ps(e, _mm_min_ps(d, tmax)));
+    _mm_storeu_ps(tn_out, n);
+    return (unsigned)_mm_movemask_ps(_mm_cmple_ps(n, x));
+}
+typedef __m128 tbound;
+static tbound to_bound(mt_real v) { return _mm_set1_ps(v); }
+#else
+static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, mt_real tmin, mt_real tmax,
+                                 mt_real tn_out[4])
+{
+    const mt_real *nxr = nd->b[t->nx], *fxr = nd->b[t->nx ^ 1];
+    const mt_real *nyr = nd->b[t->ny], *fyr = nd->b[t->ny ^ 1];
+    const mt_real *nzr = nd->b[t->nz], *fzr = nd->b[t->nz ^ 1];
+    mt_real ox = t->o[0], oy = t->o[1], oz = t->o[2], ix = t->inv[0], iy = t->inv[1];
+    mt_real iz = t->inv[2], jx = t->inv_far[0], jy = t->inv_far[1], jz = t->inv_far[2];
+    unsigned mask = 0;
+    int i;
+    for (i = 0; i < 4; ++i) {
+        mt_real a = (nxr[i] - ox) * ix, b = (nyr[i] - oy) * iy, c = (nzr[i] - oz) * iz;
+        mt_real d = (fxr[i] - ox) * jx, e = (fyr[i] - oy) * jy, f = (fzr[i] - oz) * jz;
+        mt_real n = tmin, x = tmax;
+        n = a > n ? a : n;
+        n = b > n ? b : n;
+        n = c > n ? c : n;
+        x = d < x ? d : x;
+        x = e < x ? e : x;
+        x = f < x ? f : x;
+        tn_out[i] = n;
+        mask |= (unsigned)(n <= x) << i;
+    }
+    return mask;
+}
+typedef mt_real tbound;
+static tbound to_bound(mt_real v) { return v; }
+#endif
+
+/* Index of the lowest set bit of a non-zero 4-bit mask. */
+static inline int low_bit(unsigned m)
+{
+    static const signed char tab[16] = {-1, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
+    return tab[m & 15];
 }
 
 typedef struct best {
@@ -68,44 +135,83 @@ typedef struct best {
     mt_hit qhit;
 } best;
 
+/* A hint that the child will be read soon: the node's two cache lines or
+ * the start of the leaf's triangles (GCC and clang; nothing elsewhere). */
+#if defined(__GNUC__)
+#define PREFETCH(p) __builtin_prefetch(p)
+#else
+#define PREFETCH(p) ((void)0)
+#endif
+static inline void prefetch_child(const mt_geometry *g, mt__bvh_ref c)
+{
+    if (c.count == 0) {
+        const char *p = (const char *)&g->nodes[c.index];
+        PREFETCH(p);
+        PREFETCH(p + 64);
+    } else if (c.kind == MT__LEAF_TRIS) {
+        PREFETCH(g->tri + 9 * (size_t)c.index);
+    }
+}
+
 /* Closest hit (any = 0) or any hit (any = 1); the compiler specializes the
  * two calls. */
 static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best *bs)
 {
     mt__bvh_ref stack[MT__BVH_STACK], cur = g->root;
     mt_real stack_t[MT__BVH_STACK], tmin = r->tmin, tmax = r->tmax, limit;
+    tbound vtmin = to_bound(tmin), vlimit;
     unsigned sp = 0;
     trav t;
     bs->found = 0;
-    if (g->root.kind == 0 && g->nnodes == 0) return 0;
+    if (g->stats.prims == 0) return 0;
     trav_init(&t, r);
     {
-        /* the root box, laid out as one column */
-        mt_real rb[6][2];
-        int i;
-        for (i = 0; i < 6; ++i) rb[i][0] = rb[i][1] = g->root_box[i];
-        if (child_entry(&t, (const mt_real(*)[2])rb, 0, tmin, tmax) == MT_REAL_MAX) return 0;
+        mt_real tn[4];
+        if (!(node_hits(&t, &g->root_node, vtmin, to_bound(tmax), tn) & 1)) return 0;
     }
     limit = tmax * t.prune_scale;
+    vlimit = to_bound(limit);
     for (;;) {
-        if (cur.kind == 0) {
+        if (cur.count == 0) {
             const mt__bvh_node *nd = &g->nodes[cur.index];
-            mt_real t0 = child_entry(&t, (const mt_real(*)[2])nd->b, 0, tmin, limit);
-            mt_real t1 = child_entry(&t, (const mt_real(*)[2])nd->b, 1, tmin, limit);
-            if (t0 != MT_REAL_MAX) {
-                if (t1 != MT_REAL_MAX) {
-                    int first = t1 < t0;
-                    stack[sp] = nd->c[!first];
-                    stack_t[sp++] = first ? t0 : t1;
-                    cur = nd->c[first];
+            mt_real tn[4];
+            unsigned mask = node_hits(&t, nd, vtmin, vlimit, tn);
+            if (mask) {
+                int i0 = low_bit(mask);
+                mask &= mask - 1;
+                if (!mask) {
+                    cur = nd->c[i0];
+                    continue;
+                } else if (any) {
+                    /* any hit: no need for order */
+                    while (mask) {
+                        int b = low_bit(mask);
+                        mask &= mask - 1;
+                        prefetch_child(g, nd->c[b]);
+                        stack[sp] = nd->c[b];
+                        stack_t[sp++] = tn[b];
+                    }
+                    cur = nd->c[i0];
+                    continue;
                 } else {
-                    cur = nd->c[0];
+                    /* sort the hit children by entry distance (at most 4) */
+                    int idx[4], n = 0, i, j;
+                    idx[n++] = i0;
+                    while (mask) {
+                        int b = low_bit(mask);
+                        mask &= mask - 1;
+                        for (j = n++; j > 0 && tn[idx[j - 1]] < tn[b]; --j) idx[j] = idx[j - 1];
+                        idx[j] = b;
+                    }
+                    /* idx is farthest first: stack all but the last */
+                    for (i = 0; i < n - 1; ++i) {
+                        prefetch_child(g, nd->c[idx[i]]);
+                        stack[sp] = nd->c[idx[i]];
+                        stack_t[sp++] = tn[idx[i]];
+                    }
+                    cur = nd->c[idx[n - 1]];
+                    continue;
                 }
-                continue;
-            }
-            if (t1 != MT_REAL_MAX) {
-                cur = nd->c[1];
-                continue;
             }
         } else if (cur.kind == MT__LEAF_TRIS) {
             const mt_real *v = g->tri + 9 * (size_t)cur.index;
@@ -124,6 +230,7 @@ static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best 
                     bs->found = 1;
                     bs->quad = 0;
                     limit = tmax * t.prune_scale;
+                    vlimit = to_bound(limit);
                 }
             }
         } else {
@@ -142,6 +249,7 @@ static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best 
                     bs->quad = 1;
                     bs->qhit = h;
                     limit = tmax * t.prune_scale;
+                    vlimit = to_bound(limit);
                 }
             }
         }
