@@ -7,8 +7,9 @@
  * structure-of-arrays form, so that one visit tests four boxes with the same
  * arithmetic in four lanes, and the nodes are stored depth-first in one
  * array. Leaves hold up to MT__BVH_LEAF_MAX primitives of one kind:
- * triangles (their three world-space vertices copied in leaf order, 9 reals
- * each, next to one another) or quadrics (the shape pointer).
+ * triangles, copied in packets of four in structure-of-arrays form (vertex,
+ * coordinate, lane: 36 reals; unused lanes hold NaN and never hit) so that
+ * four are tested at once, or quadrics (the shape pointer).
  */
 #ifndef MT_TRACER_BVH_H
 #define MT_TRACER_BVH_H
@@ -26,7 +27,8 @@
 enum { MT__LEAF_TRIS = 1, MT__LEAF_QUADRICS = 2 };
 
 /* A child: an inner node (count 0, index into nodes) or a leaf (count
- * primitives of kind from index on in the leaf arrays of that kind). */
+ * primitives of kind from index on in the leaf arrays of that kind; for
+ * triangles index is the first packet). */
 typedef struct mt__bvh_ref {
     uint32_t index;
     uint16_t count;
@@ -39,6 +41,11 @@ typedef struct mt__bvh_node {
     mt_real b[6][4];
     mt__bvh_ref c[4]; /* float build: 128 bytes, two cache lines */
 } mt__bvh_node;
+
+/* Four triangles: v[vertex][coordinate][lane]. */
+typedef struct mt__tri4 {
+    mt_real v[3][3][4];
+} mt__tri4;
 
 struct mt_geometry {
     mt_shape **shapes;
@@ -53,9 +60,9 @@ struct mt_geometry {
     mt_real root_box[6]; /* lo.x, hi.x, lo.y, hi.y, lo.z, hi.z */
     mt__bvh_node root_node; /* the root box in its first lane, for the first test */
 
-    mt_real *tri;      /* 9 reals per triangle, in leaf order */
-    uint32_t *tri_id;  /* global primitive ids, in leaf order */
-    uint32_t ntri;
+    mt__tri4 *tri;     /* triangle packets, in leaf order */
+    uint32_t *tri_id;  /* global primitive ids, 4 per packet (padding: UINT32_MAX) */
+    uint32_t ntri;     /* packets */
     const mt_shape **quad; /* quadric shapes, in leaf order */
     uint32_t *quad_id;
     uint32_t nquad;

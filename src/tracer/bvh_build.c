@@ -274,18 +274,24 @@ static void emit_leaf(builder *b, const range *r, mt__bvh_ref *ref)
     } else {
         ref->index = g->ntri;
         ref->kind = MT__LEAF_TRIS;
-        for (i = 0; i < n; ++i) {
-            const mt_shape *s = g->shapes[p[i].shape];
-            const int *v = s->indices + 3 * (size_t)p[i].local;
-            mt_real *dst = g->tri + 9 * (size_t)g->ntri;
-            int k;
-            for (k = 0; k < 3; ++k) {
-                dst[3 * k] = s->P[v[k]].x;
-                dst[3 * k + 1] = s->P[v[k]].y;
-                dst[3 * k + 2] = s->P[v[k]].z;
+        for (i = 0; i < (n + 3) / 4 * 4; ++i) {
+            mt__tri4 *dst = &g->tri[g->ntri + i / 4];
+            int k, lane = (int)(i % 4);
+            if (i < n) {
+                const mt_shape *s = g->shapes[p[i].shape];
+                const int *v = s->indices + 3 * (size_t)p[i].local;
+                for (k = 0; k < 3; ++k) {
+                    dst->v[k][0][lane] = s->P[v[k]].x;
+                    dst->v[k][1][lane] = s->P[v[k]].y;
+                    dst->v[k][2][lane] = s->P[v[k]].z;
+                }
+                g->tri_id[4 * (size_t)g->ntri + i] = p[i].id;
+            } else {
+                for (k = 0; k < 9; ++k) dst->v[k / 3][k % 3][lane] = (mt_real)NAN;
+                g->tri_id[4 * (size_t)g->ntri + i] = UINT32_MAX;
             }
-            g->tri_id[g->ntri++] = p[i].id;
         }
+        g->ntri += (n + 3) / 4;
     }
     ref->count = (uint16_t)n;
     g->stats.leaves++;
@@ -367,8 +373,10 @@ static mt_status gather(builder *b, mt_error *err)
             else ntri++;
         }
     }
-    g->tri = mt__malloc(((size_t)ntri * 9 + 1) * sizeof *g->tri);
-    g->tri_id = mt__malloc(((size_t)ntri + 1) * sizeof *g->tri_id);
+    /* at most one partly filled packet per leaf, and a leaf holds at least
+     * one triangle: ntri packets suffice */
+    g->tri = mt__malloc(((size_t)ntri + 1) * sizeof *g->tri);
+    g->tri_id = mt__malloc(4 * ((size_t)ntri + 1) * sizeof *g->tri_id);
     g->quad = mt__malloc(((size_t)nquad + 1) * sizeof *g->quad);
     g->quad_id = mt__malloc(((size_t)nquad + 1) * sizeof *g->quad_id);
     /* each node has at least two children: at most total - 1 nodes;
@@ -440,7 +448,7 @@ mt_status mt__bvh_build(mt_geometry *g, mt_error *err)
         return st;
     }
     g->stats.prims = total;
-    g->stats.bytes = g->nnodes * sizeof *g->nodes + g->ntri * (9 * sizeof(mt_real) + 4) +
+    g->stats.bytes = g->nnodes * sizeof *g->nodes + g->ntri * (sizeof *g->tri + 16) +
                      g->nquad * (sizeof(void *) + 4);
     return MT_OK;
 }

@@ -28,6 +28,8 @@
 typedef struct trav {
 #if USE_SSE
     __m128 vo[3], vi[3], vf[3]; /* origin, inverse direction, its scaled copy */
+    __m128 to[3], ts[3];        /* the triangle test's o[kx], o[ky], o[kz] and sx, sy, sz */
+    __m128 g2, g3, g5;          /* gamma(2), gamma(3), gamma(5) */
 #endif
     mt__tri_ray tr;
     mt_real o[3], inv[3], inv_far[3];
@@ -37,6 +39,7 @@ typedef struct trav {
 
 static void trav_init(trav *t, const mt_ray *r)
 {
+    mt__tri_ray_init(&t->tr, r);
     t->o[0] = r->o.x;
     t->o[1] = r->o.y;
     t->o[2] = r->o.z;
@@ -60,6 +63,15 @@ static void trav_init(trav *t, const mt_ray *r)
             t->vi[i] = _mm_set1_ps(t->inv[i]);
             t->vf[i] = _mm_set1_ps(t->inv_far[i]);
         }
+        t->to[0] = _mm_set1_ps(t->tr.o[t->tr.kx]);
+        t->to[1] = _mm_set1_ps(t->tr.o[t->tr.ky]);
+        t->to[2] = _mm_set1_ps(t->tr.o[t->tr.kz]);
+        t->ts[0] = _mm_set1_ps(t->tr.sx);
+        t->ts[1] = _mm_set1_ps(t->tr.sy);
+        t->ts[2] = _mm_set1_ps(t->tr.sz);
+        t->g2 = _mm_set1_ps(mt__gamma(2));
+        t->g3 = _mm_set1_ps(mt__gamma(3));
+        t->g5 = _mm_set1_ps(mt__gamma(5));
     }
 #endif
     /* a node is skipped only when it starts beyond the current closest hit
@@ -67,7 +79,6 @@ static void trav_init(trav *t, const mt_ray *r)
      * or nearly equal hits on box faces -- shared vertices and edges -- are
      * all seen and resolved by id, as a brute-force search resolves them */
     t->prune_scale = 1 + 64 * MT_REAL_EPSILON;
-    mt__tri_ray_init(&t->tr, r);
 }
 
 /* Entry distances of the ray into the four children within [tmin, tmax];
@@ -128,6 +139,89 @@ static inline int low_bit(unsigned m)
     return tab[m & 15];
 }
 
+/* The four triangles of a packet against the ray: the mask of lanes hit in
+ * [tmin, tmax], with their distances and barycentrics. mt__tri_hit's
+ * operations in four lanes (so the answers are the same bits); *exact is
+ * set, and nothing returned, when an edge function is exactly zero in some
+ * lane: the caller then tests the lanes one by one, with the double-precision
+ * recomputation of the scalar test. */
+#if USE_SSE
+static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, __m128 tmax,
+                                 mt_real tt[4], mt_real b1[4], mt_real b2[4], int *exact)
+{
+    const int kx = t->tr.kx, ky = t->tr.ky, kz = t->tr.kz;
+    const __m128 zero = _mm_setzero_ps(), absm = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    __m128 az = _mm_sub_ps(_mm_loadu_ps(q->v[0][kz]), t->to[2]);
+    __m128 bz = _mm_sub_ps(_mm_loadu_ps(q->v[1][kz]), t->to[2]);
+    __m128 cz = _mm_sub_ps(_mm_loadu_ps(q->v[2][kz]), t->to[2]);
+    __m128 ax = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(q->v[0][kx]), t->to[0]), _mm_mul_ps(t->ts[0], az));
+    __m128 ay = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(q->v[0][ky]), t->to[1]), _mm_mul_ps(t->ts[1], az));
+    __m128 bx = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(q->v[1][kx]), t->to[0]), _mm_mul_ps(t->ts[0], bz));
+    __m128 by = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(q->v[1][ky]), t->to[1]), _mm_mul_ps(t->ts[1], bz));
+    __m128 cx = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(q->v[2][kx]), t->to[0]), _mm_mul_ps(t->ts[0], cz));
+    __m128 cy = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(q->v[2][ky]), t->to[1]), _mm_mul_ps(t->ts[1], cz));
+    __m128 e0 = _mm_sub_ps(_mm_mul_ps(bx, cy), _mm_mul_ps(by, cx));
+    __m128 e1 = _mm_sub_ps(_mm_mul_ps(cx, ay), _mm_mul_ps(cy, ax));
+    __m128 e2 = _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));
+    __m128 rej, det, ts, inv, tv, valid, mzt, mxt, myt, dz, dx, dy, de, me, dt;
+    if (_mm_movemask_ps(_mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(e0, zero), _mm_cmpeq_ps(e1, zero)),
+                                  _mm_cmpeq_ps(e2, zero)))) {
+        *exact = 1;
+        return 0;
+    }
+    rej = _mm_and_ps(_mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)), _mm_cmplt_ps(e2, zero)),
+                     _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero)));
+    det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
+    rej = _mm_or_ps(rej, _mm_cmpeq_ps(det, zero));
+    az = _mm_mul_ps(az, t->ts[2]);
+    bz = _mm_mul_ps(bz, t->ts[2]);
+    cz = _mm_mul_ps(cz, t->ts[2]);
+    ts = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, az), _mm_mul_ps(e1, bz)), _mm_mul_ps(e2, cz));
+    {
+        __m128 dneg = _mm_cmplt_ps(det, zero);
+        rej = _mm_or_ps(rej, _mm_or_ps(_mm_and_ps(dneg, _mm_cmpge_ps(ts, zero)),
+                                       _mm_andnot_ps(dneg, _mm_cmple_ps(ts, zero))));
+    }
+    if (_mm_movemask_ps(rej) == 15) return 0;
+    inv = _mm_div_ps(_mm_set1_ps(1), det);
+    tv = _mm_mul_ps(ts, inv);
+    valid = _mm_andnot_ps(rej, _mm_and_ps(_mm_cmpge_ps(tv, tmin), _mm_cmple_ps(tv, tmax)));
+    if (!_mm_movemask_ps(valid)) return 0;
+    mzt = _mm_max_ps(_mm_and_ps(az, absm), _mm_max_ps(_mm_and_ps(bz, absm), _mm_and_ps(cz, absm)));
+    mxt = _mm_max_ps(_mm_and_ps(ax, absm), _mm_max_ps(_mm_and_ps(bx, absm), _mm_and_ps(cx, absm)));
+    myt = _mm_max_ps(_mm_and_ps(ay, absm), _mm_max_ps(_mm_and_ps(by, absm), _mm_and_ps(cy, absm)));
+    dz = _mm_mul_ps(t->g3, mzt);
+    dx = _mm_mul_ps(t->g5, _mm_add_ps(mxt, mzt));
+    dy = _mm_mul_ps(t->g5, _mm_add_ps(myt, mzt));
+    de = _mm_mul_ps(_mm_set1_ps(2), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(t->g2, mxt), myt),
+                                                          _mm_mul_ps(dy, mxt)),
+                                               _mm_mul_ps(dx, myt)));
+    me = _mm_max_ps(_mm_and_ps(e0, absm), _mm_max_ps(_mm_and_ps(e1, absm), _mm_and_ps(e2, absm)));
+    dt = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(3), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(t->g3, me), mzt),
+                                                                     _mm_mul_ps(de, mzt)),
+                                                          _mm_mul_ps(dz, me))),
+                    _mm_and_ps(inv, absm));
+    valid = _mm_and_ps(valid, _mm_cmpgt_ps(tv, dt));
+    _mm_storeu_ps(tt, tv);
+    _mm_storeu_ps(b1, _mm_mul_ps(e1, inv));
+    _mm_storeu_ps(b2, _mm_mul_ps(e2, inv));
+    return (unsigned)_mm_movemask_ps(valid);
+}
+#else
+static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, mt_real tmin, mt_real tmax,
+                                 mt_real tt[4], mt_real b1[4], mt_real b2[4], int *exact)
+{
+    unsigned m = 0;
+    int i;
+    *exact = 0;
+    for (i = 0; i < 4; ++i)
+        if (mt__tri_hit(&t->tr, &q->v[0][0][i], &q->v[1][0][i], &q->v[2][0][i], 4, tmin, tmax,
+                        &tt[i], &b1[i], &b2[i]))
+            m |= 1u << i;
+    return m;
+}
+#endif
+
 typedef struct best {
     mt_real t, b1, b2;
     uint32_t id;
@@ -149,7 +243,10 @@ static inline void prefetch_child(const mt_geometry *g, mt__bvh_ref c)
         PREFETCH(p);
         PREFETCH(p + 64);
     } else if (c.kind == MT__LEAF_TRIS) {
-        PREFETCH(g->tri + 9 * (size_t)c.index);
+        const char *p = (const char *)&g->tri[c.index];
+        PREFETCH(p);
+        PREFETCH(p + 64);
+        PREFETCH(p + 128);
     }
 }
 
@@ -214,23 +311,37 @@ static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best 
                 }
             }
         } else if (cur.kind == MT__LEAF_TRIS) {
-            const mt_real *v = g->tri + 9 * (size_t)cur.index;
-            uint32_t i;
-            for (i = 0; i < cur.count; ++i, v += 9) {
-                mt_real th, b1, b2;
-                uint32_t id;
-                if (!mt__tri_hit(&t.tr, v, v + 3, v + 6, tmin, tmax, &th, &b1, &b2)) continue;
-                if (any) return 1;
-                id = g->tri_id[cur.index + i];
-                if (th < tmax || !bs->found || id < bs->id) {
-                    bs->t = tmax = th;
-                    bs->b1 = b1;
-                    bs->b2 = b2;
-                    bs->id = id;
-                    bs->found = 1;
-                    bs->quad = 0;
-                    limit = tmax * t.prune_scale;
-                    vlimit = to_bound(limit);
+            uint32_t p, np = (cur.count + 3u) / 4u;
+            for (p = 0; p < np; ++p) {
+                const mt__tri4 *q = &g->tri[cur.index + p];
+                const uint32_t *ids = g->tri_id + 4 * ((size_t)cur.index + p);
+                mt_real tt[4], b1[4], b2[4];
+                int exact = 0;
+                unsigned m = tri4_hits(&t, q, vtmin, to_bound(tmax), tt, b1, b2, &exact);
+                if (exact) {
+                    /* an exact zero edge function: lane by lane, the scalar test */
+                    int i;
+                    for (i = 0; i < 4; ++i)
+                        if (mt__tri_hit(&t.tr, &q->v[0][0][i], &q->v[1][0][i], &q->v[2][0][i], 4,
+                                        tmin, tmax, &tt[i], &b1[i], &b2[i]))
+                            m |= 1u << i;
+                }
+                if (m && any) return 1;
+                while (m) {
+                    int i = low_bit(m);
+                    m &= m - 1;
+                    /* the four were tested against the tmax before this packet */
+                    if (tt[i] > tmax) continue;
+                    if (tt[i] < tmax || !bs->found || ids[i] < bs->id) {
+                        bs->t = tmax = tt[i];
+                        bs->b1 = b1[i];
+                        bs->b2 = b2[i];
+                        bs->id = ids[i];
+                        bs->found = 1;
+                        bs->quad = 0;
+                        limit = tmax * t.prune_scale;
+                        vlimit = to_bound(limit);
+                    }
                 }
             }
         } else {

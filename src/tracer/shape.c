@@ -260,7 +260,7 @@ int mt_shape_intersect(const mt_shape *s, uint32_t prim, const mt_ray *r, mt_hit
         load3(s->P[v[1]], a[1]);
         load3(s->P[v[2]], a[2]);
         mt__tri_ray_init(&tr, r);
-        if (!mt__tri_hit(&tr, a[0], a[1], a[2], r->tmin, r->tmax, &t, &b1, &b2)) return 0;
+        if (!mt__tri_hit(&tr, a[0], a[1], a[2], 1, r->tmin, r->tmax, &t, &b1, &b2)) return 0;
         hit->t = t;
         hit->b1 = b1;
         hit->b2 = b2;

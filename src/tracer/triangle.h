@@ -47,16 +47,20 @@ static inline void mt__tri_ray_init(mt__tri_ray *tr, const mt_ray *r)
 static inline mt_real mt__max3(mt_real a, mt_real b, mt_real c) { return mt_max(a, mt_max(b, c)); }
 
 /* The triangle (v0, v1, v2) against the ray: 1 with the distance *t in
- * [tmin, tmax] and the barycentric weights *b1, *b2 of v1 and v2. */
+ * [tmin, tmax] and the barycentric weights *b1, *b2 of v1 and v2. A
+ * vertex's coordinates are stride reals apart (1: x, y, z in a row; the
+ * BVH's packets of four triangles store them 4 apart). The BVH's SIMD test
+ * of a packet performs exactly these operations, in this order. */
 static inline int mt__tri_hit(const mt__tri_ray *r, const mt_real *v0, const mt_real *v1,
-                              const mt_real *v2, mt_real tmin, mt_real tmax, mt_real *t,
-                              mt_real *b1, mt_real *b2)
+                              const mt_real *v2, int stride, mt_real tmin, mt_real tmax,
+                              mt_real *t, mt_real *b1, mt_real *b2)
 {
-    const int kx = r->kx, ky = r->ky, kz = r->kz;
-    mt_real az = v0[kz] - r->o[kz], bz = v1[kz] - r->o[kz], cz = v2[kz] - r->o[kz];
-    mt_real ax = (v0[kx] - r->o[kx]) - r->sx * az, ay = (v0[ky] - r->o[ky]) - r->sy * az;
-    mt_real bx = (v1[kx] - r->o[kx]) - r->sx * bz, by = (v1[ky] - r->o[ky]) - r->sy * bz;
-    mt_real cx = (v2[kx] - r->o[kx]) - r->sx * cz, cy = (v2[ky] - r->o[ky]) - r->sy * cz;
+    const int kx = r->kx * stride, ky = r->ky * stride, kz = r->kz * stride;
+    mt_real ox = r->o[r->kx], oy = r->o[r->ky], oz = r->o[r->kz];
+    mt_real az = v0[kz] - oz, bz = v1[kz] - oz, cz = v2[kz] - oz;
+    mt_real ax = (v0[kx] - ox) - r->sx * az, ay = (v0[ky] - oy) - r->sy * az;
+    mt_real bx = (v1[kx] - ox) - r->sx * bz, by = (v1[ky] - oy) - r->sy * bz;
+    mt_real cx = (v2[kx] - ox) - r->sx * cz, cy = (v2[ky] - oy) - r->sy * cz;
     /* pbrt-v3's e0, e1, e2: the edge functions opposite v0, v1, v2 */
     mt_real e0 = bx * cy - by * cx, e1 = cx * ay - cy * ax, e2 = ax * by - ay * bx;
     mt_real det, ts, inv, tt;
@@ -88,7 +92,7 @@ static inline int mt__tri_hit(const mt__tri_ray *r, const mt_real *v0, const mt_
         mt_real dy = mt__gamma(5) * (myt + mzt);
         mt_real de = 2 * (mt__gamma(2) * mxt * myt + dy * mxt + dx * myt);
         mt_real me = mt__max3(mt_fabs(e0), mt_fabs(e1), mt_fabs(e2));
-        mt_real dt = 3 * (mt__gamma(3) * me * mzt + de * mzt + dz * me) * mt_fabs(inv);
+        mt_real dt = (3 * ((mt__gamma(3) * me * mzt + de * mzt) + dz * me)) * mt_fabs(inv);
         if (tt <= dt) return 0;
     }
     *t = tt;
