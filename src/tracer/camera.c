@@ -1,0 +1,95 @@
+/*
+ * pbrt-v2's perspective and orthographic cameras (ProjectiveCamera's
+ * transforms, GenerateRayDifferential of each, the thin lens of both).
+ */
+#include "materia/sampling.h"
+#include "tracer/camera.h"
+
+void mt__camera_default_screen(mt_real frame, mt_real screen[4])
+{
+    if (frame > 1) {
+        screen[0] = -frame;
+        screen[1] = frame;
+        screen[2] = -1;
+        screen[3] = 1;
+    } else {
+        screen[0] = -1;
+        screen[1] = 1;
+        screen[2] = -1 / frame;
+        screen[3] = 1 / frame;
+    }
+}
+
+void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_real screen[4],
+                     mt_real lens_radius, mt_real focal_distance, int xres, int yres,
+                     const mt_transform *camera_to_world)
+{
+    /* ScreenToRaster = Scale(xres, yres, 1) * Scale(1 / (x1 - x0), 1 / (y0 - y1), 1)
+     *                  * Translate(-x0, -y1, 0): screen y up, raster y down */
+    mt_transform a = mt_scale((mt_real)xres, (mt_real)yres, 1);
+    mt_transform b = mt_scale(1 / (screen[1] - screen[0]), 1 / (screen[2] - screen[3]), 1);
+    mt_transform t = mt_translate(mt_v3(-screen[0], -screen[3], 0));
+    mt_transform ab = mt_transform_compose(&a, &b);
+    mt_transform s2r = mt_transform_compose(&ab, &t);
+    mt_transform r2s = mt_transform_inverse(&s2r);
+    mt_transform c2s = orthographic ? mt_orthographic(0, 1) : mt_perspective(fov_deg, (mt_real)1e-2, 1000);
+    mt_transform s2c = mt_transform_inverse(&c2s);
+    mt_vec3 o;
+    c->orthographic = orthographic;
+    c->raster_to_camera = mt_transform_compose(&s2c, &r2s);
+    c->camera_to_world = *camera_to_world;
+    c->lens_radius = lens_radius;
+    c->focal_distance = focal_distance;
+    if (orthographic) {
+        c->dx_camera = mt_transform_vector(&c->raster_to_camera, mt_v3(1, 0, 0));
+        c->dy_camera = mt_transform_vector(&c->raster_to_camera, mt_v3(0, 1, 0));
+    } else {
+        o = mt_transform_point(&c->raster_to_camera, mt_v3(0, 0, 0));
+        c->dx_camera = mt_v3_sub(mt_transform_point(&c->raster_to_camera, mt_v3(1, 0, 0)), o);
+        c->dy_camera = mt_v3_sub(mt_transform_point(&c->raster_to_camera, mt_v3(0, 1, 0)), o);
+    }
+}
+
+/* The thin lens of both cameras: the ray through the lens point that meets
+ * the main ray on the plane of focus z = focalDistance. */
+static void thin_lens(const mt__camera *c, const mt__camera_sample *s, mt_vec3 *o, mt_vec3 *d)
+{
+    mt_real lu, lv, ft;
+    mt_vec3 focus;
+    mt_concentric_sample_disk(s->lens_u, s->lens_v, &lu, &lv);
+    lu *= c->lens_radius;
+    lv *= c->lens_radius;
+    ft = c->focal_distance / d->z;
+    focus = mt_v3_add(*o, mt_v3_scale(*d, ft));
+    *o = mt_v3(lu, lv, 0);
+    *d = mt_v3_normalize(mt_v3_sub(focus, *o));
+}
+
+void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff *rd)
+{
+    const mt_transform *w = &c->camera_to_world;
+    mt_vec3 pc = mt_transform_point(&c->raster_to_camera, mt_v3(s->image_x, s->image_y, 0));
+    mt_vec3 o, d, rxo, ryo, rxd, ryd;
+    if (c->orthographic) {
+        o = pc;
+        d = mt_v3(0, 0, 1);
+        if (c->lens_radius > 0) thin_lens(c, s, &o, &d);
+        rxo = mt_v3_add(o, c->dx_camera);
+        ryo = mt_v3_add(o, c->dy_camera);
+        rxd = ryd = d;
+    } else {
+        o = mt_v3(0, 0, 0);
+        d = mt_v3_normalize(pc);
+        if (c->lens_radius > 0) thin_lens(c, s, &o, &d);
+        /* pbrt-v2: the neighbours keep the pinhole directions and the lens origin */
+        rxo = ryo = o;
+        rxd = mt_v3_normalize(mt_v3_add(pc, c->dx_camera));
+        ryd = mt_v3_normalize(mt_v3_add(pc, c->dy_camera));
+    }
+    rd->ray = mt_ray_make(mt_transform_point(w, o), mt_transform_vector(w, d), 0, MT_RAY_TMAX);
+    rd->has_differentials = 1;
+    rd->rx_o = mt_transform_point(w, rxo);
+    rd->ry_o = mt_transform_point(w, ryo);
+    rd->rx_d = mt_transform_vector(w, rxd);
+    rd->ry_d = mt_transform_vector(w, ryd);
+}

@@ -1,0 +1,135 @@
+/*
+ * Shading a path vertex and direct lighting, after pbrt-v2's
+ * core/intersection.cpp (GetBSDF, Le) and core/integrator.cpp
+ * (EstimateDirect, UniformSampleOneLight, UniformSampleAllLights).
+ */
+#include "materia/sampling.h"
+#include "tracer/shading.h"
+
+int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
+                     const mt_raydiff *rd, mt__vertex *v)
+{
+    mt_hit_surface(hit, ray, &v->sf);
+    if (rd) mt_surface_differentials(&v->sf, rd);
+    mt_surface_shading(&v->sf, &v->dgs);
+    v->info = mt_shape_user(hit->shape);
+    v->bsdf = mt_material_get_bsdf(v->info->material, &v->sf.dg, &v->dgs, tc->arena, &tc->err);
+    if (!v->bsdf) {
+        tc->shading_failures++;
+        return 0;
+    }
+    v->p = v->dgs.p;
+    v->n = mt_bsdf_shading(v->bsdf)->n; /* after bump mapping, as pbrt-v2's dgShading.nn */
+    v->wo = mt_v3_normalize(mt_v3_neg(ray->d));
+    return 1;
+}
+
+mt_rgb mt__vertex_le(const mt_scene *s, const mt__vertex *v)
+{
+    if (v->info->light < 0) return mt_rgb_black();
+    return mt__area_light_l(&s->lights[v->info->light], v->sf.dg.n, v->wo);
+}
+
+#define NON_SPECULAR ((unsigned)MT_BSDF_ALL & ~(unsigned)MT_BSDF_SPECULAR)
+
+/* Radiance from `light` arriving along a BSDF-sampled ray: its area light if
+ * the ray's first hit is on it, its Le if the ray leaves the scene. */
+static mt_rgb light_along(const mt_scene *s, const mt__light *light, const mt_ray *ray)
+{
+    mt_hit hit;
+    if (mt_geometry_intersect(s->geom, ray, &hit)) {
+        const mt__prim_info *info = mt_shape_user(hit.shape);
+        mt_surface sf;
+        if (info->light < 0 || &s->lights[info->light] != light) return mt_rgb_black();
+        mt_hit_surface(&hit, ray, &sf);
+        return mt__area_light_l(light, sf.dg.n, mt_v3_neg(ray->d));
+    }
+    return mt__light_le(light, ray->d);
+}
+
+mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt__vertex *v,
+                           const mt_real lu[3], const mt_real bu[3])
+{
+    const mt_scene *s = tc->scene;
+    mt_rgb Ld = mt_rgb_black();
+    mt__light_sample ls;
+    mt_bsdf_sample bs;
+    int delta = mt__light_is_delta(light);
+    /* sample the light */
+    mt__light_sample_l(light, &v->sf, v->p, lu[0], lu[1], lu[2], &ls);
+    if (ls.pdf > 0 && !mt_rgb_is_black(ls.Li)) {
+        mt_rgb f = mt_bsdf_f(v->bsdf, v->wo, ls.wi, NON_SPECULAR);
+        if (!mt_rgb_is_black(f) && !mt_geometry_occluded(s->geom, &ls.shadow)) {
+            mt_real w = 1;
+            if (!delta) w = mt_power_heuristic(1, ls.pdf, 1, mt_bsdf_pdf(v->bsdf, v->wo, ls.wi, NON_SPECULAR));
+            Ld = mt_rgb_scale(mt_rgb_mul(f, ls.Li), mt_v3_absdot(ls.wi, v->n) * w / ls.pdf);
+        }
+    }
+    if (delta) return Ld;
+    /* sample the BSDF */
+    bs = mt_bsdf_sample_f(v->bsdf, v->wo, bu[0], bu[1], bu[2], NON_SPECULAR);
+    if (!mt_rgb_is_black(bs.f) && bs.pdf > 0) {
+        mt_real w = 1;
+        mt_rgb Li;
+        mt_ray ray;
+        if (!(bs.type & MT_BSDF_SPECULAR)) {
+            mt_real lpdf = mt__light_pdf(light, v->p, bs.wi);
+            if (lpdf == 0) return Ld;
+            w = mt_power_heuristic(1, bs.pdf, 1, lpdf);
+        }
+        ray = mt_surface_spawn(&v->sf, bs.wi);
+        Li = light_along(s, light, &ray);
+        if (!mt_rgb_is_black(Li))
+            Ld = mt_rgb_add(Ld, mt_rgb_scale(mt_rgb_mul(bs.f, Li),
+                                             mt_v3_absdot(bs.wi, v->n) * w / bs.pdf));
+    }
+    return Ld;
+}
+
+mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex)
+{
+    const mt_scene *s = tc->scene;
+    mt_real sel[2], lpos[2], comp[2], dir[2], lu[3], bu[3];
+    int n = s->nlights, i;
+    if (n == 0) return mt_rgb_black();
+    mt__vertex_sample(tc, vertex, 0, 0, 1, sel);
+    mt__vertex_sample(tc, vertex, 1, 0, 1, lpos);
+    mt__vertex_sample(tc, vertex, 2, 0, 1, comp);
+    mt__vertex_sample(tc, vertex, 3, 0, 1, dir);
+    i = (int)(sel[0] * (mt_real)n);
+    if (i > n - 1) i = n - 1;
+    lu[0] = sel[1];
+    lu[1] = lpos[0];
+    lu[2] = lpos[1];
+    bu[0] = comp[0];
+    bu[1] = dir[0];
+    bu[2] = dir[1];
+    return mt_rgb_scale(mt__estimate_direct(tc, &s->lights[i], v, lu, bu), (mt_real)n);
+}
+
+mt_rgb mt__sample_all_lights(mt__thread_ctx *tc, const mt__vertex *v, int vertex)
+{
+    const mt_scene *s = tc->scene;
+    mt_rgb L = mt_rgb_black();
+    int i, j;
+    for (i = 0; i < s->nlights; ++i) {
+        int n = s->light_samples[i];
+        unsigned k = 8 + 3 * (unsigned)i;
+        mt_rgb Ld = mt_rgb_black();
+        for (j = 0; j < n; ++j) {
+            mt_real comps[2], lpos[2], dir[2], lu[3], bu[3];
+            mt__vertex_sample(tc, vertex, k, j, n, comps);
+            mt__vertex_sample(tc, vertex, k + 1, j, n, lpos);
+            mt__vertex_sample(tc, vertex, k + 2, j, n, dir);
+            lu[0] = comps[0];
+            lu[1] = lpos[0];
+            lu[2] = lpos[1];
+            bu[0] = comps[1];
+            bu[1] = dir[0];
+            bu[2] = dir[1];
+            Ld = mt_rgb_add(Ld, mt__estimate_direct(tc, &s->lights[i], v, lu, bu));
+        }
+        L = mt_rgb_add(L, mt_rgb_divs(Ld, (mt_real)n));
+    }
+    return L;
+}

@@ -1,0 +1,169 @@
+/*
+ * pbrt-v2's surface integrators with their estimands:
+ *   path            integrators/path.cpp: emission at the first vertex and
+ *                   after specular bounces, one light per vertex
+ *                   (UniformSampleOneLight with MIS), Russian roulette after
+ *                   the fourth vertex with continuation probability
+ *                   min(0.5, y(throughput)), stop when bounces == maxdepth
+ *                   (so maxdepth + 1 vertices get direct lighting)
+ *   directlighting  integrators/directlighting.cpp: emission, all lights
+ *                   (nsamples each) or one, and specular reflection and
+ *                   transmission followed while depth + 1 < maxdepth, with
+ *                   pbrt-v2's ray differentials (core/integrator.cpp
+ *                   SpecularReflect, SpecularTransmit)
+ * and SamplerRenderer::Li: rays that leave the scene see the lights' Le.
+ */
+#include "tracer/shading.h"
+
+void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2])
+{
+    if (vertex < MT__LD_VERTICES) {
+        uint32_t dim = MT__DIM_VERTEX0 + (uint32_t)vertex * 0x10000u + k;
+        mt__sample_2d(&tc->sampler, dim, tc->index * (uint32_t)n + (uint32_t)j, out);
+        return;
+    }
+    out[0] = mt_rng_uniform(&tc->rng);
+    out[1] = mt_rng_uniform(&tc->rng);
+}
+
+mt_rgb mt__escaped(const mt_scene *s, mt_vec3 d)
+{
+    mt_rgb L = mt_rgb_black();
+    int i;
+    for (i = 0; i < s->ninfinite; ++i) L = mt_rgb_add(L, mt__light_le(&s->lights[s->infinite[i]], d));
+    return L;
+}
+
+static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *first)
+{
+    const mt_scene *s = tc->scene;
+    mt_rgb L = mt_rgb_black(), beta = mt_rgb_gray(1);
+    mt_ray ray = rd->ray;
+    mt_hit hit = *first;
+    int bounces, specular = 0;
+    for (bounces = 0;; ++bounces) {
+        mt__vertex v;
+        mt_real comp[2], dir[2];
+        mt_bsdf_sample bs;
+        if (!mt__vertex_shade(tc, &hit, &ray, bounces == 0 ? rd : NULL, &v)) break;
+        if (bounces == 0 || specular) L = mt_rgb_add(L, mt_rgb_mul(beta, mt__vertex_le(s, &v)));
+        L = mt_rgb_add(L, mt_rgb_mul(beta, mt__sample_one_light(tc, &v, bounces)));
+        /* the next direction: pair 2's second value and pair 4 */
+        mt__vertex_sample(tc, bounces, 2, 0, 1, comp);
+        mt__vertex_sample(tc, bounces, 4, 0, 1, dir);
+        bs = mt_bsdf_sample_f(v.bsdf, v.wo, comp[1], dir[0], dir[1], MT_BSDF_ALL);
+        if (mt_rgb_is_black(bs.f) || bs.pdf == 0) break;
+        specular = (bs.type & MT_BSDF_SPECULAR) != 0;
+        beta = mt_rgb_mul(beta, mt_rgb_scale(bs.f, mt_v3_absdot(bs.wi, v.n) / bs.pdf));
+        ray = mt_surface_spawn(&v.sf, bs.wi);
+        if (bounces > 3) {
+            mt_real rr[2], q = mt_min((mt_real)0.5, mt_rgb_y(beta));
+            mt__vertex_sample(tc, bounces, 5, 0, 1, rr);
+            if (rr[0] > q) break;
+            beta = mt_rgb_divs(beta, q);
+        }
+        if (bounces == s->maxdepth) break;
+        if (!mt_geometry_intersect(s->geom, &ray, &hit)) {
+            if (specular) L = mt_rgb_add(L, mt_rgb_mul(beta, mt__escaped(s, ray.d)));
+            break;
+        }
+    }
+    return L;
+}
+
+static mt_rgb direct_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *hit, int depth);
+
+/* The radiance along a ray spawned by a specular bounce. */
+static mt_rgb trace(mt__thread_ctx *tc, const mt_raydiff *rd, int depth)
+{
+    mt_hit hit;
+    if (!mt_geometry_intersect(tc->scene->geom, &rd->ray, &hit))
+        return mt__escaped(tc->scene, rd->ray.d);
+    return direct_li(tc, rd, &hit, depth);
+}
+
+/* SpecularReflect / SpecularTransmit: one specular direction of type
+ * MT_BSDF_REFLECTION or MT_BSDF_TRANSMISSION, the ray differentials of the
+ * reflected or refracted neighbours (Igehy), and the radiance brought back. */
+static mt_rgb specular(mt__thread_ctx *tc, const mt_raydiff *rd, const mt__vertex *v,
+                       unsigned lobe, const mt_real u[3], int depth)
+{
+    const mt_diffgeom *dgs = mt_bsdf_shading(v->bsdf);
+    mt_vec3 n = v->n, wo = v->wo, wi;
+    mt_bsdf_sample bs = mt_bsdf_sample_f(v->bsdf, wo, u[0], u[1], u[2], lobe | MT_BSDF_SPECULAR);
+    mt_raydiff next;
+    mt_rgb Li;
+    if (!(bs.pdf > 0) || mt_rgb_is_black(bs.f) || mt_v3_absdot(bs.wi, n) == 0) return mt_rgb_black();
+    wi = bs.wi;
+    next = mt_raydiff_from_ray(&rd->ray);
+    next.ray = mt_surface_spawn(&v->sf, wi);
+    if (rd->has_differentials) {
+        mt_vec3 dndx = mt_v3_add(mt_v3_scale(dgs->dndu, dgs->dudx), mt_v3_scale(dgs->dndv, dgs->dvdx));
+        mt_vec3 dndy = mt_v3_add(mt_v3_scale(dgs->dndu, dgs->dudy), mt_v3_scale(dgs->dndv, dgs->dvdy));
+        mt_vec3 dwodx = mt_v3_sub(mt_v3_neg(rd->rx_d), wo), dwody = mt_v3_sub(mt_v3_neg(rd->ry_d), wo);
+        mt_real dDNdx = mt_v3_dot(dwodx, n) + mt_v3_dot(wo, dndx);
+        mt_real dDNdy = mt_v3_dot(dwody, n) + mt_v3_dot(wo, dndy);
+        next.has_differentials = 1;
+        next.rx_o = mt_v3_add(v->p, v->sf.dg.dpdx);
+        next.ry_o = mt_v3_add(v->p, v->sf.dg.dpdy);
+        if (lobe == MT_BSDF_REFLECTION) {
+            mt_real won = mt_v3_dot(wo, n);
+            next.rx_d = mt_v3_add(mt_v3_sub(wi, dwodx),
+                                  mt_v3_scale(mt_v3_add(mt_v3_scale(dndx, won), mt_v3_scale(n, dDNdx)), 2));
+            next.ry_d = mt_v3_add(mt_v3_sub(wi, dwody),
+                                  mt_v3_scale(mt_v3_add(mt_v3_scale(dndy, won), mt_v3_scale(n, dDNdy)), 2));
+        } else {
+            mt_real eta = mt_bsdf_eta(v->bsdf), wn, win, mu, k;
+            mt_vec3 w = mt_v3_neg(wo);
+            if (mt_v3_dot(wo, n) < 0) eta = 1 / eta;
+            wn = mt_v3_dot(w, n);
+            win = mt_v3_dot(wi, n);
+            mu = eta * wn - win;
+            k = eta - (eta * eta * wn) / win;
+            next.rx_d = mt_v3_sub(mt_v3_add(wi, mt_v3_scale(dwodx, eta)),
+                                  mt_v3_add(mt_v3_scale(dndx, mu), mt_v3_scale(n, k * dDNdx)));
+            next.ry_d = mt_v3_sub(mt_v3_add(wi, mt_v3_scale(dwody, eta)),
+                                  mt_v3_add(mt_v3_scale(dndy, mu), mt_v3_scale(n, k * dDNdy)));
+        }
+        if (!mt_v3_is_finite(next.rx_d) || !mt_v3_is_finite(next.ry_d)) next.has_differentials = 0;
+    }
+    Li = trace(tc, &next, depth + 1);
+    return mt_rgb_scale(mt_rgb_mul(bs.f, Li), mt_v3_absdot(wi, n) / bs.pdf);
+}
+
+static mt_rgb direct_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *hit, int depth)
+{
+    const mt_scene *s = tc->scene;
+    mt__vertex v;
+    mt_rgb L;
+    if (!mt__vertex_shade(tc, hit, &rd->ray, rd->has_differentials ? rd : NULL, &v))
+        return mt_rgb_black();
+    L = mt__vertex_le(s, &v);
+    if (s->nlights > 0)
+        L = mt_rgb_add(L, s->strategy_all ? mt__sample_all_lights(tc, &v, depth)
+                                          : mt__sample_one_light(tc, &v, depth));
+    if (depth + 1 < s->maxdepth) {
+        mt_real comps[2], r[2], t[2], ur[3], ut[3];
+        mt__vertex_sample(tc, depth, 4, 0, 1, comps);
+        mt__vertex_sample(tc, depth, 5, 0, 1, r);
+        mt__vertex_sample(tc, depth, 6, 0, 1, t);
+        ur[0] = comps[0];
+        ur[1] = r[0];
+        ur[2] = r[1];
+        ut[0] = comps[1];
+        ut[1] = t[0];
+        ut[2] = t[1];
+        L = mt_rgb_add(L, specular(tc, rd, &v, MT_BSDF_REFLECTION, ur, depth));
+        L = mt_rgb_add(L, specular(tc, rd, &v, MT_BSDF_TRANSMISSION, ut, depth));
+    }
+    return L;
+}
+
+mt_rgb mt__li(mt__thread_ctx *tc, const mt_raydiff *rd)
+{
+    mt_hit hit;
+    if (!mt_geometry_intersect(tc->scene->geom, &rd->ray, &hit))
+        return mt__escaped(tc->scene, rd->ray.d);
+    if (tc->scene->integrator == MT__INTEGRATOR_PATH) return path_li(tc, rd, &hit);
+    return direct_li(tc, rd, &hit, 0);
+}

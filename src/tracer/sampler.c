@@ -1,0 +1,103 @@
+/*
+ * materia's low-discrepancy sampler: Owen-scrambled, index-shuffled 2D
+ * Sobol' points (see sampler.h for the construction and its properties).
+ */
+#include "tracer/sampler.h"
+
+static uint32_t reverse_bits(uint32_t v)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    v = __builtin_bswap32(v);
+#else
+    v = (v << 24) | ((v & 0xff00u) << 8) | ((v >> 8) & 0xff00u) | (v >> 24);
+#endif
+    v = ((v & 0x0f0f0f0fu) << 4) | ((v >> 4) & 0x0f0f0f0fu);
+    v = ((v & 0x33333333u) << 2) | ((v >> 2) & 0x33333333u);
+    v = ((v & 0x55555555u) << 1) | ((v >> 1) & 0x55555555u);
+    return v;
+}
+
+/* The Laine-Karras permutation with Burley's constants: each output bit
+ * depends only on the input bits below it, so in bit-reversed order it is a
+ * nested uniform (Owen) scramble. */
+static uint32_t lk_permute(uint32_t x, uint32_t seed)
+{
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return x;
+}
+
+/* A 32-bit integer hash with good avalanche (Wellons' "lowbias32"). */
+uint32_t mt__hash32(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+uint32_t mt__hash_combine(uint32_t a, uint32_t b)
+{
+    return mt__hash32(a ^ (b + 0x9e3779b9u + (a << 6) + (a >> 2)));
+}
+
+void mt__sobol_tables_init(mt__sobol_tables *st)
+{
+    /* column j of the reversed matrix: bit j of the index contributes v_j,
+     * v_0 = 1, v_{j+1} = v_j ^ (v_j << 1) (Sobol's second dimension, whose
+     * direction numbers are v_j = v_{j-1} ^ (v_{j-1} >> 1) from the top bit) */
+    uint32_t col[32], v = 1;
+    int j, b, k;
+    for (j = 0; j < 32; ++j) {
+        col[j] = v;
+        v ^= v << 1;
+    }
+    for (b = 0; b < 4; ++b)
+        for (k = 0; k < 256; ++k) {
+            uint32_t r = 0;
+            for (j = 0; j < 8; ++j)
+                if (k & (1 << j)) r ^= col[8 * b + j];
+            st->t[b][k] = r;
+        }
+}
+
+void mt__pixel_sampler_init(mt__pixel_sampler *ps, const mt__sobol_tables *tables,
+                            uint64_t seed, int x, int y)
+{
+    uint32_t h = mt__hash32((uint32_t)seed ^ 0x5bd1e995u);
+    h = mt__hash_combine(h, (uint32_t)(seed >> 32));
+    h = mt__hash_combine(h, (uint32_t)x);
+    h = mt__hash_combine(h, (uint32_t)y);
+    ps->tables = tables;
+    ps->seed = h;
+}
+
+void mt__sample_2d_bits(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index,
+                        uint32_t out[2])
+{
+    const mt__sobol_tables *t = ps->tables;
+    uint32_t s = mt__hash_combine(ps->seed, dim);
+    uint32_t s1 = mt__hash32(s ^ 0x68e31da4u), s2 = mt__hash32(s ^ 0xb5297a4du);
+    /* nested uniform shuffle of the index (Burley section 4) */
+    uint32_t i = reverse_bits(lk_permute(reverse_bits(index), s));
+    /* the Sobol' coordinates in bit-reversed order: van der Corput reversed is
+     * the index itself; the second dimension through the byte tables */
+    uint32_t y = t->t[0][i & 0xff] ^ t->t[1][(i >> 8) & 0xff] ^ t->t[2][(i >> 16) & 0xff] ^
+                 t->t[3][i >> 24];
+    /* Owen scrambling of each coordinate, then back to natural bit order */
+    out[0] = reverse_bits(lk_permute(i, s1));
+    out[1] = reverse_bits(lk_permute(y, s2));
+}
+
+void mt__sample_2d(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index, mt_real out[2])
+{
+    uint32_t b[2];
+    mt__sample_2d_bits(ps, dim, index, b);
+    out[0] = mt__u32_to_unit(b[0]);
+    out[1] = mt__u32_to_unit(b[1]);
+}

@@ -1,0 +1,83 @@
+/*
+ * Internal: a loaded scene -- geometry, the material and area light of each
+ * shape, lights, camera, film, sampler and integrator settings -- and the
+ * per-thread context the integrators run in.
+ */
+#ifndef MT_TRACER_SCENE_H
+#define MT_TRACER_SCENE_H
+
+#include "materia/arena.h"
+#include "materia/material.h"
+#include "materia/render.h"
+#include "tracer/camera.h"
+#include "tracer/film.h"
+#include "tracer/light.h"
+#include "tracer/sampler.h"
+
+typedef enum mt__integrator { MT__INTEGRATOR_PATH, MT__INTEGRATOR_DIRECT } mt__integrator;
+
+/* What the renderer attaches to each shape (mt_shape_user). */
+typedef struct mt__prim_info {
+    const mt_material *material;
+    int light; /* index of its area light in the scene's lights, -1 when none */
+} mt__prim_info;
+
+struct mt_scene {
+    mt_mode mode;
+    mt_geometry *geom;
+    mt__camera camera;
+    mt__film film;
+    char *filename;      /* Film "filename" */
+    char *sampler_name;  /* as the scene names it */
+    int spp;             /* pixel samples the scene asks for, after pbrt-v2's rounding */
+    int round_pow2;      /* the sampler rounds light sample counts up to powers of two */
+    mt__integrator integrator;
+    int maxdepth;
+    int strategy_all;    /* directlighting: "all" (1) or "one" (0) */
+    mt__light *lights;
+    int nlights, cap_lights;
+    int *light_samples;  /* per light: samples for strategy "all" (pbrt-v2's RoundSize) */
+    int *infinite;       /* indices of the infinite lights (Le of escaping rays) */
+    int ninfinite;
+    mt__prim_info **prims;
+    int nprims, cap_prims;
+    mt_material **materials;
+    int nmaterials, cap_materials;
+};
+
+/* ---- the integrators' per-thread context ------------------------------------ */
+
+typedef struct mt__thread_ctx {
+    const mt_scene *scene;
+    mt_arena *arena;
+    mt__pixel_sampler sampler;
+    uint32_t index;   /* the camera sample's index in its pixel */
+    mt_rng rng;       /* dimensions beyond the low-discrepancy ones */
+    long shading_failures;
+    long rejected;    /* samples set to black (NaN, Inf, negative) */
+    mt_error err;     /* scratch for mt_material_get_bsdf */
+} mt__thread_ctx;
+
+/* Dimension pairs of a camera sample: the image position, the lens, then
+ * per path vertex (or directlighting depth) a block of MT__DIMS_PER_VERTEX
+ * pairs, for the first MT__LD_VERTICES vertices; deeper vertices draw from
+ * the PCG stream seeded by (pixel, sample) (pbrt-v2 likewise switches to its
+ * RNG after SAMPLE_DEPTH = 3 vertices). */
+#define MT__DIM_IMAGE 0u
+#define MT__DIM_LENS 1u
+#define MT__DIM_VERTEX0 2u
+#define MT__DIMS_PER_VERTEX 8u
+#define MT__LD_VERTICES 4
+
+/* Two uniform values for pair `k` of vertex `vertex`, array element `j` of
+ * `n` (n = 1 for a single sample). */
+void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2]);
+
+/* The radiance along a camera ray (pbrt-v2 SamplerRenderer::Li with the
+ * scene's surface integrator). */
+mt_rgb mt__li(mt__thread_ctx *tc, const mt_raydiff *rd);
+
+/* Radiance of infinite lights along a ray that leaves the scene. */
+mt_rgb mt__escaped(const mt_scene *s, mt_vec3 d);
+
+#endif

@@ -1,0 +1,42 @@
+/*
+ * Internal: what the integrators share -- a shaded path vertex (pbrt-v2's
+ * Intersection::GetBSDF and Le) and direct lighting (core/integrator.cpp
+ * EstimateDirect, UniformSampleOneLight, UniformSampleAllLights).
+ */
+#ifndef MT_TRACER_SHADING_H
+#define MT_TRACER_SHADING_H
+
+#include "tracer/scene.h"
+
+typedef struct mt__vertex {
+    mt_surface sf;             /* the intersection (geometric dg, error bounds) */
+    mt_diffgeom dgs;           /* the shape's shading geometry */
+    mt_bsdf *bsdf;
+    const mt__prim_info *info;
+    mt_vec3 p, n, wo;          /* pbrt-v2's bsdf->dgShading.p, .nn and -ray.d */
+} mt__vertex;
+
+/* The vertex at hit of ray; rd (may be NULL) gives the ray differentials for
+ * texture filtering. 0 when the material cannot build a BSDF there (counted in
+ * tc->shading_failures). */
+int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
+                     const mt_raydiff *rd, mt__vertex *v);
+
+/* Radiance the vertex emits towards wo (its area light, one-sided). */
+mt_rgb mt__vertex_le(const mt_scene *s, const mt__vertex *v);
+
+/* EstimateDirect: light sampling and BSDF sampling of one light, combined with
+ * the power heuristic; lu = (ucomp, u1, u2) for the light, bu for the BSDF;
+ * non-specular BSDF components only. */
+mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt__vertex *v,
+                           const mt_real lu[3], const mt_real bu[3]);
+
+/* UniformSampleOneLight at path vertex `vertex` (dimension pairs 0, 1, 2, 3
+ * of its block: light choice and component, light position, BSDF component,
+ * BSDF direction). */
+mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex);
+/* UniformSampleAllLights: every light with its sample count (pairs 8 + 3j,
+ * 9 + 3j, 10 + 3j for light j, as arrays). */
+mt_rgb mt__sample_all_lights(mt__thread_ctx *tc, const mt__vertex *v, int vertex);
+
+#endif

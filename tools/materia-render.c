@@ -1,0 +1,149 @@
+/*
+ * materia-render: renders a pbrt-v2 scene file with materia's materials.
+ *
+ *   materia-render scene.pbrt [-o out.exr|.png|.pfm] [--spp N] [--threads N]
+ *                  [--seed S] [--mode pbrt-v2|corrected] [--quiet]
+ *                  [--variance var.exr]
+ *
+ * The image goes to -o, else to the Film's "filename" (resolved against the
+ * current directory, as pbrt-v2 does). Errors print file:line and the
+ * message and exit with status 1 without writing anything.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "materia.h"
+#include "materia/render.h"
+
+static const char *usage =
+    "usage: materia-render scene.pbrt [-o out.exr|.png|.pfm] [--spp N] [--threads N]\n"
+    "                      [--seed S] [--mode pbrt-v2|corrected] [--quiet] [--variance var.exr]\n";
+
+static void warn(void *ctx, const char *file, int line, const char *msg)
+{
+    (void)ctx;
+    if (file && *file) fprintf(stderr, "%s:%d: warning: %s\n", file, line, msg);
+    else fprintf(stderr, "warning: %s\n", msg);
+}
+
+static void progress(void *ctx, double f, double elapsed, double remaining)
+{
+    (void)ctx;
+    if (remaining >= 0)
+        fprintf(stderr, "\rrendering: %5.1f%%  %6.1fs elapsed, %6.1fs left ", 100 * f, elapsed, remaining);
+    else
+        fprintf(stderr, "\rrendering: %5.1f%%  %6.1fs elapsed ", 100 * f, elapsed);
+    if (f >= 1) fputc('\n', stderr);
+    fflush(stderr);
+}
+
+static int fail(const mt_error *err)
+{
+    char buf[1024];
+    fprintf(stderr, "materia-render: %s\n", mt_error_format(err, buf, sizeof buf));
+    return 1;
+}
+
+static int bad_option(const char *what, const char *value)
+{
+    fprintf(stderr, "materia-render: %s: bad value \"%s\"\n%s", what, value ? value : "", usage);
+    return 2;
+}
+
+/* A whole decimal number within [lo, hi]. */
+static int parse_long(const char *s, long long lo, long long hi, long long *out)
+{
+    char *end;
+    long long v;
+    if (!s || !*s) return 0;
+    errno = 0;
+    v = strtoll(s, &end, 10);
+    if (errno || *end || v < lo || v > hi) return 0;
+    *out = v;
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene = NULL, *out = NULL, *var_path = NULL;
+    mt_render_options o;
+    mt_render_stats stats;
+    mt_image img, var;
+    mt_scene *s;
+    mt_error err;
+    int quiet = 0, i;
+    long long v;
+    mt_render_options_default(&o);
+    for (i = 1; i < argc; ++i) {
+        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            fputs(usage, stdout);
+            return 0;
+        } else if (strcmp(a, "-o") == 0) {
+            if (!val) return bad_option(a, val);
+            out = val, ++i;
+        } else if (strcmp(a, "--variance") == 0) {
+            if (!val) return bad_option(a, val);
+            var_path = val, ++i;
+        } else if (strcmp(a, "--spp") == 0) {
+            if (!parse_long(val, 1, 1 << 24, &v)) return bad_option(a, val);
+            o.spp = (int)v, ++i;
+        } else if (strcmp(a, "--threads") == 0) {
+            if (!parse_long(val, 1, 1024, &v)) return bad_option(a, val);
+            o.threads = (int)v, ++i;
+        } else if (strcmp(a, "--seed") == 0) {
+            if (!parse_long(val, 0, 0x7fffffffffffffffLL, &v)) return bad_option(a, val);
+            o.seed = (uint64_t)v, ++i;
+        } else if (strcmp(a, "--mode") == 0) {
+            if (!val || mt_mode_parse(val, &o.mode) != 0) return bad_option(a, val);
+            ++i;
+        } else if (strcmp(a, "--quiet") == 0) {
+            quiet = 1;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "materia-render: unknown option %s\n%s", a, usage);
+            return 2;
+        } else if (!scene) {
+            scene = a;
+        } else {
+            fprintf(stderr, "materia-render: more than one scene file\n%s", usage);
+            return 2;
+        }
+    }
+    if (!scene) {
+        fputs(usage, stderr);
+        return 2;
+    }
+    o.warn = warn;
+    if (!quiet) o.progress = progress;
+    if (!(s = mt_scene_load(scene, &o, &err))) return fail(&err);
+    if (!out) out = mt_scene_filename(s);
+    if (mt_scene_render(s, &o, &img, var_path ? &var : NULL, &stats, &err) != MT_OK) {
+        mt_scene_destroy(s);
+        return fail(&err);
+    }
+    if (var_path && mt_render_write(var_path, &var, s, &o, &err) != MT_OK) {
+        mt_image_free(&img);
+        mt_image_free(&var);
+        mt_scene_destroy(s);
+        return fail(&err);
+    }
+    if (mt_render_write(out, &img, s, &o, &err) != MT_OK) {
+        if (var_path) remove(var_path); /* nothing written on failure */
+        mt_image_free(&img);
+        if (var_path) mt_image_free(&var);
+        mt_scene_destroy(s);
+        return fail(&err);
+    }
+    if (!quiet)
+        fprintf(stderr, "%s: %dx%d, %d spp, %d threads: %.2f s, %.3g samples/s%s -> %s\n", scene,
+                img.width, img.height, stats.spp, stats.threads, stats.seconds,
+                stats.samples_per_second, "", out);
+    if (stats.rejected || stats.shading_failures)
+        fprintf(stderr, "materia-render: %ld samples set to black (NaN, Inf or negative), %ld "
+                        "path vertices without a BSDF\n", stats.rejected, stats.shading_failures);
+    mt_image_free(&img);
+    if (var_path) mt_image_free(&var);
+    mt_scene_destroy(s);
+    return 0;
+}
