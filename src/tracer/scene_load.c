@@ -273,6 +273,8 @@ static mt_status on_statement(void *ctx, const mt_statement *st, mt_error *err)
     mt__option *slot;
     mt_status rc;
     int handled;
+    snprintf(ld->last_file, sizeof ld->last_file, "%s", st->file ? st->file : "");
+    ld->last_line = st->line;
     if (ld->phase == MT__PHASE_DONE)
         return fail(err, MT_ERR_UNSUPPORTED,
                     "%s after WorldEnd: materia renders one WorldBegin/WorldEnd block%s", d, NULL);
@@ -387,9 +389,9 @@ static mt_scene *load(parse_fn parse, const void *src, const char *name,
     po.warn_ctx = o->warn_ctx;
     rc = parse(src, &po, &ld, err);
     if (rc == MT_OK && ld.phase != MT__PHASE_DONE) {
-        rc = mt_error_set(err, MT_ERR_INVALID, "%s: the scene ends without %s", name,
+        rc = mt_error_set(err, MT_ERR_INVALID, "the scene ends without %s",
                           ld.phase == MT__PHASE_OPTIONS ? "WorldBegin" : "WorldEnd");
-        mt_error_locate(err, name, 0, 0);
+        mt_error_locate(err, ld.last_file[0] ? ld.last_file : name, ld.last_line, 0);
     }
     loader_free(&ld);
     if (rc != MT_OK) {

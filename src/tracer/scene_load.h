@@ -28,6 +28,8 @@ typedef struct mt__loader {
     mt__phase phase;
     mt__option camera, film, filter, sampler, surface, volume, renderer, accelerator;
     mt_transform camera_to_world;
+    char last_file[256]; /* the last statement, for errors at the end of the file */
+    int last_line;
     const void **reported; /* parameter lists already checked for unused entries */
     int nreported, cap_reported;
 } mt__loader;

@@ -1,0 +1,57 @@
+/* Rendering helpers for tests and benchmarks (see trender.h). */
+#include <math.h>
+#include <string.h>
+#include "support/trender.h"
+
+static void count_warning(void *ctx, const char *file, int line, const char *msg)
+{
+    (void)file;
+    (void)line;
+    (void)msg;
+    if (ctx) ++*(int *)ctx;
+}
+
+mt_scene *t_scene(const char *text, const char *dir, int *nwarn, mt_error *err)
+{
+    mt_render_options o;
+    mt_render_options_default(&o);
+    if (nwarn) *nwarn = 0;
+    o.warn = count_warning;
+    o.warn_ctx = nwarn;
+    return mt_scene_load_string(text, "<test>", dir, &o, err);
+}
+
+mt_status t_render(const mt_scene *s, int spp, int threads, uint64_t seed, mt_image *img,
+                   mt_image *var, mt_error *err)
+{
+    mt_render_options o;
+    mt_render_options_default(&o);
+    o.spp = spp;
+    o.threads = threads;
+    o.seed = seed;
+    return mt_scene_render(s, &o, img, var, NULL, err);
+}
+
+void t_region_stats(const mt_image *img, const mt_image *var, int x0, int y0, int x1, int y1,
+                    int c, double *mean, double *se)
+{
+    double sum = 0, vsum = 0;
+    long n = 0;
+    int x, y;
+    for (y = y0; y < y1; ++y)
+        for (x = x0; x < x1; ++x) {
+            size_t i = ((size_t)y * (size_t)img->width + (size_t)x) * (size_t)img->channels + (size_t)c;
+            sum += img->data[i];
+            if (var) vsum += var->data[i];
+            ++n;
+        }
+    *mean = n ? sum / (double)n : 0;
+    *se = n ? sqrt(vsum) / (double)n : 0;
+}
+
+int t_images_identical(const mt_image *a, const mt_image *b)
+{
+    return a->width == b->width && a->height == b->height && a->channels == b->channels &&
+           memcmp(a->data, b->data,
+                  (size_t)a->width * (size_t)a->height * (size_t)a->channels * sizeof(float)) == 0;
+}

@@ -1,0 +1,712 @@
+/*
+ * The renderer's parts against their definitions: camera rays (pbrt-v2's
+ * LookAt, fov on the shorter axis, screen window, Scale -1 1 1 mirroring,
+ * differentials, orthographic, thin lens), each pixel filter's values and
+ * integral against its formula, the film's normalization and crop window,
+ * the sampler's stratification and determinism, and the lights: Sample_L
+ * against Pdf, solid angles by Monte Carlo, the infinite map's importance
+ * sampling against the map.
+ *
+ * Tolerances: directions computed in mt_real from double transforms agree
+ * with the double formula within 1e-5 (float); quadratures use midpoint
+ * rules whose error is below the stated tolerance; Monte Carlo checks allow
+ * 5 standard errors estimated from the samples.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "materia/rng.h"
+#include "materia/sampling.h"
+#include "support/check.h"
+#include "support/tfiles.h"
+#include "support/tgeom.h"
+#include "support/trender.h"
+#include "tracer/scene.h"
+
+#define PI_D 3.14159265358979323846
+#define DIR_TOL 2e-5
+
+typedef struct d3 {
+    double x, y, z;
+} d3;
+
+static d3 D3(double x, double y, double z)
+{
+    d3 r;
+    r.x = x, r.y = y, r.z = z;
+    return r;
+}
+static d3 d3_norm(d3 a)
+{
+    double l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return D3(a.x / l, a.y / l, a.z / l);
+}
+static d3 d3_cross(d3 a, d3 b)
+{
+    return D3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static double vdist(mt_vec3 a, d3 b)
+{
+    return fmax(fabs(a.x - b.x), fmax(fabs(a.y - b.y), fabs(a.z - b.z)));
+}
+static mt_vec3 unit(mt_vec3 v) { return mt_v3_normalize(v); }
+
+/* ---- cameras ------------------------------------------------------------------ */
+
+static mt_scene *scene_or_fail(const char *name, const char *text)
+{
+    mt_error err;
+    mt_scene *s = t_scene(text, NULL, NULL, &err);
+    if (!s) {
+        char buf[1024];
+        t_fail(name, "scene: %s", mt_error_format(&err, buf, sizeof buf));
+    }
+    return s;
+}
+
+static mt_raydiff ray_at(const mt_scene *s, double x, double y)
+{
+    mt__camera_sample cs;
+    mt_raydiff rd;
+    cs.image_x = (mt_real)x;
+    cs.image_y = (mt_real)y;
+    cs.lens_u = cs.lens_v = (mt_real)0.5;
+    mt__camera_ray(&s->camera, &cs, &rd);
+    return rd;
+}
+
+/* pbrt-v2's LookAt frame: left = up x dir, newUp = dir x left (camera x, y, z). */
+typedef struct frame3 {
+    d3 pos, x, y, z;
+} frame3;
+
+static frame3 look_at(d3 pos, d3 look, d3 up)
+{
+    frame3 f;
+    f.pos = pos;
+    f.z = d3_norm(D3(look.x - pos.x, look.y - pos.y, look.z - pos.z));
+    f.x = d3_norm(d3_cross(d3_norm(up), f.z));
+    f.y = d3_cross(f.z, f.x);
+    return f;
+}
+
+/* The expected world direction through raster (x, y): screen coordinates
+ * scaled by tan(fov / 2), in the camera frame (mirror: camera x negated). */
+static d3 expected_dir(const frame3 *f, const double sw[4], int xres, int yres, double fov,
+                       double x, double y, int mirror)
+{
+    double sx = sw[0] + (sw[1] - sw[0]) * x / xres, sy = sw[3] - (sw[3] - sw[2]) * y / yres;
+    double t = tan(fov * PI_D / 360), cx = sx * t * (mirror ? -1 : 1), cy = sy * t;
+    return d3_norm(D3(cx * f->x.x + cy * f->y.x + f->z.x, cx * f->x.y + cy * f->y.y + f->z.y,
+                      cx * f->x.z + cy * f->y.z + f->z.z));
+}
+
+static void check_camera(const char *name, const char *text, frame3 f, const double sw[4], int xres,
+                         int yres, double fov, int mirror)
+{
+    static const double pts[][2] = {{0, 0}, {0.5, 0.5}, {1, 0.25}, {0.3, 1}, {0.77, 0.61}};
+    mt_scene *s = scene_or_fail(name, text);
+    double worst = 0, worst_dx = 0, worst_o = 0;
+    size_t i;
+    if (!s) return;
+    for (i = 0; i < sizeof pts / sizeof pts[0]; ++i) {
+        double x = pts[i][0] * xres, y = pts[i][1] * yres;
+        mt_raydiff rd = ray_at(s, x, y);
+        worst = fmax(worst, vdist(unit(rd.ray.d), expected_dir(&f, sw, xres, yres, fov, x, y, mirror)));
+        worst_dx = fmax(worst_dx, vdist(unit(rd.rx_d), expected_dir(&f, sw, xres, yres, fov, x + 1, y, mirror)));
+        worst_dx = fmax(worst_dx, vdist(unit(rd.ry_d), expected_dir(&f, sw, xres, yres, fov, x, y + 1, mirror)));
+        worst_o = fmax(worst_o, vdist(rd.ray.o, f.pos));
+    }
+    t_check(worst < DIR_TOL && worst_dx < DIR_TOL && worst_o < 1e-5, name,
+            "max direction error %.3g, differentials %.3g, origin %.3g", worst, worst_dx, worst_o);
+    mt_scene_destroy(s);
+}
+
+static void test_cameras(void)
+{
+    frame3 f0 = look_at(D3(0, 0, 0), D3(0, 0, 1), D3(0, 1, 0));
+    frame3 f1 = look_at(D3(1, 2, 3), D3(4, -1, 5), D3(0, 0, 1));
+    double land[4] = {-2, 2, -1, 1}, port[4] = {-1, 1, -2, 2}, custom[4] = {-0.5, 1.5, -1, 0.25};
+    double square[4] = {-1, 1, -1, 1};
+    mt_scene *s;
+    mt_raydiff a, b;
+    check_camera("camera landscape: fov 90 spans y (the shorter axis), x right is world +x",
+                 "LookAt 0 0 0  0 0 1  0 1 0 Camera \"perspective\" \"float fov\" [90]\n"
+                 "Film \"image\" \"integer xresolution\" [200] \"integer yresolution\" [100]\n"
+                 "WorldBegin WorldEnd\n",
+                 f0, land, 200, 100, 90, 0);
+    check_camera("camera portrait: fov 60 spans x (the shorter axis)",
+                 "LookAt 1 2 3  4 -1 5  0 0 1 Camera \"perspective\" \"float fov\" [60]\n"
+                 "Film \"image\" \"integer xresolution\" [100] \"integer yresolution\" [200]\n"
+                 "WorldBegin WorldEnd\n",
+                 f1, port, 100, 200, 60, 0);
+    check_camera("camera screenwindow",
+                 "LookAt 1 2 3  4 -1 5  0 0 1\n"
+                 "Camera \"perspective\" \"float fov\" [45] \"float screenwindow\" [-0.5 1.5 -1 0.25]\n"
+                 "Film \"image\" \"integer xresolution\" [64] \"integer yresolution\" [48]\n"
+                 "WorldBegin WorldEnd\n",
+                 f1, custom, 64, 48, 45, 0);
+    check_camera("camera frameaspectratio 1 on a 64x32 film",
+                 "LookAt 1 2 3  4 -1 5  0 0 1\n"
+                 "Camera \"perspective\" \"float fov\" [50] \"float frameaspectratio\" [1]\n"
+                 "Film \"image\" \"integer xresolution\" [64] \"integer yresolution\" [32]\n"
+                 "WorldBegin WorldEnd\n",
+                 f1, square, 64, 32, 50, 0);
+    check_camera("camera Scale -1 1 1 mirrors the image horizontally",
+                 "Scale -1 1 1 LookAt 1 2 3  4 -1 5  0 0 1 Camera \"perspective\" \"float fov\" [70]\n"
+                 "Film \"image\" \"integer xresolution\" [80] \"integer yresolution\" [60]\n"
+                 "WorldBegin WorldEnd\n",
+                 f1, (double[4]){-80.0 / 60, 80.0 / 60, -1, 1}, 80, 60, 70, 1);
+
+    /* orthographic: origins on the screen window in the camera plane, one direction */
+    s = scene_or_fail("camera orthographic",
+                      "LookAt 1 2 3  4 -1 5  0 0 1 Camera \"orthographic\" \"float screenwindow\" [-2 2 -1 1]\n"
+                      "Film \"image\" \"integer xresolution\" [40] \"integer yresolution\" [20]\n"
+                      "WorldBegin WorldEnd\n");
+    if (s) {
+        double worst = 0;
+        int i;
+        for (i = 0; i < 5; ++i) {
+            double x = 40 * (0.1 + 0.2 * i), y = 20 * (0.9 - 0.17 * i);
+            double sx = -2 + 4 * x / 40, sy = 1 - 2 * y / 20;
+            d3 o = D3(f1.pos.x + sx * f1.x.x + sy * f1.y.x, f1.pos.y + sx * f1.x.y + sy * f1.y.y,
+                      f1.pos.z + sx * f1.x.z + sy * f1.y.z);
+            mt_raydiff rd = ray_at(s, x, y);
+            worst = fmax(worst, fmax(vdist(rd.ray.o, o), vdist(unit(rd.ray.d), f1.z)));
+            worst = fmax(worst, vdist(mt_v3_sub(rd.rx_o, rd.ray.o), D3(0.1 * f1.x.x, 0.1 * f1.x.y, 0.1 * f1.x.z)));
+        }
+        t_check(worst < 1e-5, "camera orthographic", "max error %.3g", worst);
+        mt_scene_destroy(s);
+    }
+
+    /* thin lens: rays through different lens points meet on the plane of focus */
+    s = scene_or_fail("camera thin lens",
+                      "LookAt 1 2 3  4 -1 5  0 0 1\n"
+                      "Camera \"perspective\" \"float fov\" [40] \"float lensradius\" [0.2] \"float focaldistance\" [3]\n"
+                      "Film \"image\" \"integer xresolution\" [50] \"integer yresolution\" [50]\n"
+                      "WorldBegin WorldEnd\n");
+    if (s) {
+        mt__camera_sample cs;
+        mt_vec3 pa, pb;
+        double ta, tb, la;
+        cs.image_x = 13.3f, cs.image_y = 31.7f, cs.lens_u = 0.1f, cs.lens_v = 0.8f;
+        mt__camera_ray(&s->camera, &cs, &a);
+        cs.lens_u = 0.9f, cs.lens_v = 0.3f;
+        mt__camera_ray(&s->camera, &cs, &b);
+        /* camera z of a point = (p - pos) . f1.z; reach z = 3 */
+        ta = (3 - ((a.ray.o.x - 1) * f1.z.x + (a.ray.o.y - 2) * f1.z.y + (a.ray.o.z - 3) * f1.z.z)) /
+             (a.ray.d.x * f1.z.x + a.ray.d.y * f1.z.y + a.ray.d.z * f1.z.z);
+        tb = (3 - ((b.ray.o.x - 1) * f1.z.x + (b.ray.o.y - 2) * f1.z.y + (b.ray.o.z - 3) * f1.z.z)) /
+             (b.ray.d.x * f1.z.x + b.ray.d.y * f1.z.y + b.ray.d.z * f1.z.z);
+        pa = mt_ray_at(&a.ray, (mt_real)ta);
+        pb = mt_ray_at(&b.ray, (mt_real)tb);
+        la = sqrt(pow(a.ray.o.x - 1, 2) + pow(a.ray.o.y - 2, 2) + pow(a.ray.o.z - 3, 2));
+        t_check(vdist(pa, D3(pb.x, pb.y, pb.z)) < 1e-4 && la > 0.01 && la <= 0.2 + 1e-6,
+                "camera thin lens: rays meet on the plane of focus, origins on the lens",
+                "focus points differ by %.3g, lens offset %.3g", vdist(pa, D3(pb.x, pb.y, pb.z)), la);
+        mt_scene_destroy(s);
+    }
+}
+
+/* ---- filters and film ---------------------------------------------------------- */
+
+static void add_float(mt_paramset *ps, const char *name, double v)
+{
+    mt_param p;
+    memset(&p, 0, sizeof p);
+    p.name = name;
+    p.type = MT_PARAM_FLOAT;
+    p.type_name = "float";
+    p.count = 1;
+    p.reals = &v;
+    mt_paramset_add(ps, &p, NULL);
+}
+
+/* The 2D integral of the filter over its support by the midpoint rule. */
+static double filter_integral(const mt__filter *f, int n)
+{
+    double sum = 0, hx = 2 * f->xwidth / n, hy = 2 * f->ywidth / n;
+    int i, j;
+    for (j = 0; j < n; ++j)
+        for (i = 0; i < n; ++i)
+            sum += mt__filter_eval(f, (mt_real)(-f->xwidth + (i + 0.5) * hx),
+                                   (mt_real)(-f->ywidth + (j + 0.5) * hy));
+    return sum * hx * hy;
+}
+
+static double gauss1d_integral(double a, double w)
+{
+    return sqrt(PI_D / a) * erf(w * sqrt(a)) - 2 * w * exp(-a * w * w);
+}
+
+static void test_filters(void)
+{
+    mt__filter f;
+    mt_error err;
+    mt_paramset *ps = mt_paramset_create();
+    double v, want;
+    /* box */
+    mt__filter_create(&f, "box", ps, &err);
+    t_check(f.xwidth == 0.5f && f.ywidth == 0.5f && mt__filter_eval(&f, 0.3f, -0.4f) == 1,
+            "filter box: default width 0.5, value 1", "width %g", (double)f.xwidth);
+    t_rel(filter_integral(&f, 200), 1.0, 1e-6, 0, "filter box: integral (2 xw)(2 yw)");
+    /* gaussian, defaults and custom */
+    mt__filter_create(&f, "gaussian", ps, &err);
+    v = mt__filter_eval(&f, 0.3f, -0.7f);
+    want = (exp(-2 * 0.09) - exp(-8.0)) * (exp(-2 * 0.49) - exp(-8.0));
+    t_rel(v, want, 1e-5, 1e-6, "filter gaussian: value (alpha 2, width 2)");
+    t_rel(filter_integral(&f, 400), gauss1d_integral(2, 2) * gauss1d_integral(2, 2), 1e-4, 0,
+          "filter gaussian: integral against the closed form");
+    mt_paramset_destroy(ps);
+    ps = mt_paramset_create();
+    add_float(ps, "alpha", 1);
+    add_float(ps, "xwidth", 1.5);
+    mt__filter_create(&f, "gaussian", ps, &err);
+    t_rel(filter_integral(&f, 400), gauss1d_integral(1, 1.5) * gauss1d_integral(1, 2), 1e-4, 0,
+          "filter gaussian: alpha 1, xwidth 1.5");
+    mt_paramset_destroy(ps);
+    /* mitchell: the kernel integrates to one for any B, C; argument 2x/w */
+    ps = mt_paramset_create();
+    mt__filter_create(&f, "mitchell", ps, &err);
+    t_rel(filter_integral(&f, 400), 1.0, 1e-4, 0, "filter mitchell: integral (w/2)^2 = 1");
+    v = mt__filter_eval(&f, 0, 0);
+    t_rel(v, pow((6 - 2.0 / 3) / 6, 2), 1e-5, 0, "filter mitchell: value at 0 ((6 - 2B) / 6)^2");
+    v = mt__filter_eval(&f, 1.5f, 0);
+    want = ((-1.0 / 3 - 2) * 3.375 + (2 + 10) * 2.25 + (-4 - 16) * 1.5 + (8.0 / 3 + 8)) / 6 * (6 - 2.0 / 3) / 6;
+    t_rel(v, want, 1e-4, 1e-6, "filter mitchell: value on the outer lobe (|2x/w| = 1.5)");
+    mt_paramset_destroy(ps);
+    ps = mt_paramset_create();
+    add_float(ps, "B", 0);
+    add_float(ps, "C", 0.5);
+    add_float(ps, "ywidth", 3);
+    mt__filter_create(&f, "mitchell", ps, &err);
+    t_rel(filter_integral(&f, 400), 1.0 * 1.5, 1e-4, 0, "filter mitchell: Catmull-Rom, ywidth 3");
+    mt_paramset_destroy(ps);
+    /* triangle */
+    ps = mt_paramset_create();
+    mt__filter_create(&f, "triangle", ps, &err);
+    t_rel(mt__filter_eval(&f, 0.5f, -1.5f), 1.5 * 0.5, 1e-6, 0, "filter triangle: value");
+    t_rel(filter_integral(&f, 400), 16.0, 1e-4, 0, "filter triangle: integral w^2 h^2");
+    /* sinc: pbrt-v2's argument |x| / width */
+    mt__filter_create(&f, "sinc", ps, &err);
+    t_rel(mt__filter_eval(&f, 2, 0), -4 / (3 * PI_D * PI_D), 1e-5, 0,
+          "filter sinc: value at x = width / 2 (sinc(pi/2) sinc(3 pi/2))");
+    t_check(mt__filter_eval(&f, 0, 0) == 1 && mt__filter_eval(&f, 3.99f, 0) != 0, "filter sinc: shape",
+            "f(0) = %g", (double)mt__filter_eval(&f, 0, 0));
+    t_check(mt__filter_create(&f, "lanczos", ps, &err) == MT_ERR_UNSUPPORTED, "filter unknown name",
+            "status %d", err.status);
+    add_float(ps, "xwidth", 0);
+    t_check(mt__filter_create(&f, "box", ps, &err) == MT_ERR_INVALID && strcmp(err.param, "xwidth") == 0,
+            "filter zero width rejected", "status %d param %s", err.status, err.param);
+    mt_paramset_destroy(ps);
+}
+
+/* A constant radiance gives that constant through any filter (the weights
+ * are normalized), negative lobes included. */
+static void test_film_normalization(void)
+{
+    static const char *names[] = {"box", "gaussian", "mitchell", "triangle", "sinc"};
+    mt_paramset *ps = mt_paramset_create();
+    mt_real crop[4] = {0, 1, 0, 1};
+    size_t k;
+    for (k = 0; k < 5; ++k) {
+        mt__filter f;
+        mt__film film;
+        mt__film_buf b;
+        mt_image img;
+        mt_rng rng;
+        mt_error err;
+        double worst = 0;
+        int i;
+        char name[96];
+        mt__filter_create(&f, names[k], ps, &err);
+        mt__film_init(&film, 12, 9, crop, &f);
+        mt__film_buf_alloc(&b, 12 * 9, &err);
+        b.x0 = 0, b.y0 = 0, b.w = 12, b.h = 9;
+        mt_rng_seed(&rng, 7, k);
+        for (i = 0; i < 20000; ++i) {
+            mt_real x = (mt_real)(film.sx0 + (film.sx1 - film.sx0) * mt_rng_uniform_d(&rng));
+            mt_real y = (mt_real)(film.sy0 + (film.sy1 - film.sy0) * mt_rng_uniform_d(&rng));
+            mt__film_add(&film, &b, x, y, mt_rgb_make(0.25f, 1.5f, 3));
+        }
+        mt__film_develop(&film, &b, &img, NULL, &err);
+        for (i = 0; i < 12 * 9; ++i)
+            worst = fmax(worst, fmax(fabs(img.data[3 * i] - 0.25), fmax(fabs(img.data[3 * i + 1] - 1.5),
+                                                                         fabs(img.data[3 * i + 2] - 3))));
+        snprintf(name, sizeof name, "film %s: a constant radiance develops to that constant", names[k]);
+        t_check(worst < 1e-5, name, "max error %.3g", worst);
+        mt_image_free(&img);
+        mt__film_buf_free(&b);
+    }
+    mt_paramset_destroy(ps);
+}
+
+static const char *crop_scene =
+    "LookAt 0 -4 2  0 0 0.5  0 0 1 Camera \"perspective\" \"float fov\" [35]\n"
+    "Film \"image\" \"integer xresolution\" [32] \"integer yresolution\" [24] %s\n"
+    "Sampler \"lowdiscrepancy\" \"integer pixelsamples\" [4] SurfaceIntegrator \"path\"\n"
+    "WorldBegin LightSource \"infinite\" \"rgb L\" [0.5 0.6 0.7]\n"
+    "Material \"plastic\" Shape \"sphere\" \"float radius\" [0.8]\n"
+    "Material \"matte\" Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+    "  \"point P\" [-5 -5 0 5 -5 0 5 5 0 -5 5 0]\n"
+    "WorldEnd\n";
+
+static void test_crop_window(void)
+{
+    char text[2048];
+    mt_image full, crop;
+    mt_error err;
+    mt_scene *s;
+    int x0, y0, w, h, x, y, same = 1;
+    snprintf(text, sizeof text, crop_scene, "");
+    s = scene_or_fail("film crop window", text);
+    if (!s || t_render(s, 0, 2, 3, &full, NULL, &err) != MT_OK) {
+        mt_scene_destroy(s);
+        t_fail("film crop window", "render failed");
+        return;
+    }
+    mt_scene_destroy(s);
+    /* pbrt-v2: x0 = ceil(32 * .25) = 8, width = ceil(32 * .75) - 8 = 16; the
+     * pairs are put in order; y0 = ceil(24 * .1) = 3, height = ceil(24 * .6) - 3 = 12 */
+    snprintf(text, sizeof text, crop_scene, "\"float cropwindow\" [0.75 0.25 0.1 0.6]");
+    s = scene_or_fail("film crop window", text);
+    if (!s) return;
+    x0 = s->film.x0, y0 = s->film.y0, w = s->film.width, h = s->film.height;
+    t_check(x0 == 8 && w == 16 && y0 == 3 && h == 12, "film crop window in pixels (pbrt-v2's rounding)",
+            "x0 %d w %d y0 %d h %d", x0, w, y0, h);
+    if (t_render(s, 0, 1, 3, &crop, NULL, &err) == MT_OK) {
+        /* box filter and per-pixel sampling: a crop renders the same pixels */
+        for (y = 0; y < h && same; ++y)
+            for (x = 0; x < w && same; ++x)
+                same = memcmp(&crop.data[3 * (y * w + x)], &full.data[3 * ((y + y0) * 32 + x + x0)],
+                              3 * sizeof(float)) == 0;
+        t_check(crop.width == 16 && crop.height == 12 && same,
+                "film crop window renders the same pixels as the full image", "size %dx%d, same %d",
+                crop.width, crop.height, same);
+        mt_image_free(&crop);
+    }
+    mt_image_free(&full);
+    mt_scene_destroy(s);
+}
+
+/* ---- sampler --------------------------------------------------------------------- */
+
+/* 1 when the n = 2^m points form a (0,m,2)-net: every elementary interval of
+ * area 2^-m holds exactly one. */
+static int is_net(const uint32_t (*p)[2], int m)
+{
+    int n = 1 << m, a, i;
+    int *count = calloc((size_t)n, sizeof *count);
+    int ok = count != NULL;
+    for (a = 0; a <= m && ok; ++a) {
+        memset(count, 0, (size_t)n * sizeof *count);
+        for (i = 0; i < n; ++i) {
+            uint32_t cx = a ? p[i][0] >> (32 - a) : 0, cy = m - a ? p[i][1] >> (32 - (m - a)) : 0;
+            count[(cx << (m - a)) | cy]++;
+        }
+        for (i = 0; i < n; ++i)
+            if (count[i] != 1) ok = 0;
+    }
+    free(count);
+    return ok;
+}
+
+static void test_sampler(void)
+{
+    mt__sobol_tables tab;
+    mt__pixel_sampler ps, ps2;
+    uint32_t pts[256][2];
+    int i, nets = 1, blocks = 1, dim, px;
+    double sx = 0, sxy = 0, sx2 = 0;
+    uint32_t a[2], b[2];
+    mt__sobol_tables_init(&tab);
+    /* every dimension pair of several pixels: the first 2^m samples form a net */
+    for (px = 0; px < 4; ++px)
+        for (dim = 0; dim < 12; ++dim) {
+            mt__pixel_sampler_init(&ps, &tab, 42, px * 7, px * 3 + 1);
+            for (i = 0; i < 256; ++i) mt__sample_2d_bits(&ps, (uint32_t)dim, (uint32_t)i, pts[i]);
+            nets &= is_net((const uint32_t(*)[2])pts, 8) && is_net((const uint32_t(*)[2])pts, 4) &&
+                    is_net((const uint32_t(*)[2])(pts + 16), 4);
+            /* arrays of 4 per camera sample: each sample's block is a (0,2,2)-net */
+            for (i = 0; i < 64; ++i) blocks &= is_net((const uint32_t(*)[2])(pts + 4 * i), 2);
+        }
+    t_check(nets, "sampler: 16 and 256 samples of each pixel and pair form (0,m,2)-nets", "not a net");
+    t_check(blocks, "sampler: array blocks of 4 per camera sample are (0,2,2)-nets", "not a net");
+    /* determinism and seeds */
+    mt__pixel_sampler_init(&ps, &tab, 42, 5, 9);
+    mt__pixel_sampler_init(&ps2, &tab, 42, 5, 9);
+    mt__sample_2d_bits(&ps, 3, 17, a);
+    mt__sample_2d_bits(&ps2, 3, 17, b);
+    t_check(a[0] == b[0] && a[1] == b[1], "sampler: deterministic", "differs");
+    mt__pixel_sampler_init(&ps2, &tab, 43, 5, 9);
+    mt__sample_2d_bits(&ps2, 3, 17, b);
+    t_check(a[0] != b[0] && a[1] != b[1], "sampler: the seed changes the pattern", "same values");
+    /* different pairs decorrelated: correlation of x in pairs 2 and 3 over
+     * many pixels and samples (|r| < 5 / sqrt(n)) */
+    for (px = 0; px < 64; ++px) {
+        mt_real u[2], v[2];
+        mt__pixel_sampler_init(&ps, &tab, 1, px, 0);
+        for (i = 0; i < 64; ++i) {
+            mt__sample_2d(&ps, 2, (uint32_t)i, u);
+            mt__sample_2d(&ps, 3, (uint32_t)i, v);
+            sx += u[0] - 0.5;
+            sx2 += (u[0] - 0.5) * (u[0] - 0.5);
+            sxy += (u[0] - 0.5) * (v[0] - 0.5);
+        }
+    }
+    t_check(fabs(sxy / sx2) < 5 / sqrt(4096.0) && fabs(sx / 4096) < 1e-3,
+            "sampler: pairs decorrelated, values centred", "r = %.4f, mean offset %.4g", sxy / sx2,
+            sx / 4096);
+}
+
+/* ---- lights ----------------------------------------------------------------------- */
+
+/* Mean and standard error of n values. */
+typedef struct acc {
+    double s, s2;
+    long n;
+} acc;
+static void acc_add(acc *a, double v)
+{
+    a->s += v, a->s2 += v * v, a->n++;
+}
+static double acc_mean(const acc *a) { return a->s / (double)a->n; }
+static double acc_se(const acc *a)
+{
+    double m = acc_mean(a);
+    return sqrt(fmax(a->s2 / (double)a->n - m * m, 0) / (double)a->n);
+}
+
+/* Sample_L from p: pdf equals Pdf(p, wi); E[1/pdf] over samples with
+ * radiance equals the solid angle `omega`; and Pdf integrates to one over
+ * the directions that see the light (uniform directions). */
+static void check_area_light(const char *name, const mt__light *l, mt_vec3 p, double omega)
+{
+    mt_rng rng;
+    acc inv = {0, 0, 0}, integ = {0, 0, 0};
+    double worst = 0;
+    int i;
+    char nm[160];
+    mt_rng_seed(&rng, 11, 5);
+    for (i = 0; i < 40000; ++i) {
+        mt__light_sample ls;
+        mt_real u0 = mt_rng_uniform(&rng), u1 = mt_rng_uniform(&rng), u2 = mt_rng_uniform(&rng);
+        mt__light_sample_l(l, NULL, p, u0, u1, u2, &ls);
+        if (ls.pdf > 0 && !mt_rgb_is_black(ls.Li)) {
+            double q = mt__light_pdf(l, p, ls.wi);
+            worst = fmax(worst, fabs(q - ls.pdf) / ls.pdf);
+            acc_add(&inv, 1 / ls.pdf);
+        } else {
+            acc_add(&inv, 0);
+        }
+    }
+    for (i = 0; i < 200000; ++i) {
+        mt_vec3 w = mt_uniform_sample_sphere(mt_rng_uniform(&rng), mt_rng_uniform(&rng));
+        mt_ray r = mt_ray_make(p, w, (mt_real)1e-3, MT_RAY_TMAX);
+        mt_hit h;
+        uint32_t k;
+        int hit = 0;
+        for (k = 0; k < mt_shape_prim_count(l->shape) && !hit; ++k) hit = mt_shape_intersect(l->shape, k, &r, &h);
+        acc_add(&integ, hit ? 4 * PI_D * mt__light_pdf(l, p, w) : 0);
+    }
+    snprintf(nm, sizeof nm, "light %s: Sample_L's pdf equals Pdf", name);
+    t_check(worst < 1e-3, nm, "max relative difference %.3g", worst);
+    snprintf(nm, sizeof nm, "light %s: E[1/pdf] is the solid angle", name);
+    t_check(fabs(acc_mean(&inv) - omega) <= 5 * acc_se(&inv) + 1e-4 * omega, nm,
+            "%.6g +- %.2g, want %.6g", acc_mean(&inv), acc_se(&inv), omega);
+    snprintf(nm, sizeof nm, "light %s: Pdf integrates to 1 over the light", name);
+    t_check(fabs(acc_mean(&integ) - 1) <= 5 * acc_se(&integ) + 1e-3, nm, "%.5g +- %.2g",
+            acc_mean(&integ), acc_se(&integ));
+}
+
+static void test_area_lights(void)
+{
+    mt_paramset *ps = mt_paramset_create();
+    mt_transform t = mt_translate(mt_v3(0, 0, 3));
+    mt_error err;
+    mt__light l;
+    mt_shape *s;
+    double h = 3, r = 0.7, a = 1.2, b = 0.8, d = 2;
+    /* a sphere of radius 1 at distance 3: the cone 2 pi (1 - cos theta_max) */
+    s = t_shape("Shape \"sphere\" \"float radius\" [1]", &t, 0, NULL, &err);
+    if (s && mt__area_light_create(&l, "area", ps, s, &err) == MT_OK)
+        check_area_light("sphere", &l, mt_v3(0, 0, 0), 2 * PI_D * (1 - sqrt(1 - 1.0 / 9)));
+    mt_shape_destroy(s);
+    /* a disk seen on its axis, facing the point (ReverseOrientation: the
+     * disk's normal is +z; from below it needs -z) */
+    s = t_shape("Shape \"disk\" \"float radius\" [0.7]", &t, 1, NULL, &err);
+    if (s && mt__area_light_create(&l, "diffuse", ps, s, &err) == MT_OK)
+        check_area_light("disk", &l, mt_v3(0, 0, 0), 2 * PI_D * (1 - h / sqrt(h * h + r * r)));
+    mt_shape_destroy(s);
+    /* a rectangle of two triangles facing the point: 4 asin(ab / sqrt((a^2 + 4d^2)(b^2 + 4d^2))) */
+    t = mt_translate(mt_v3(0, 0, 2));
+    s = t_shape("Shape \"trianglemesh\" \"integer indices\" [0 2 1 0 3 2]"
+                " \"point P\" [-0.6 -0.4 0  0.6 -0.4 0  0.6 0.4 0  -0.6 0.4 0]",
+                &t, 0, NULL, &err);
+    if (s && mt__area_light_create(&l, "area", ps, s, &err) == MT_OK)
+        check_area_light("triangle mesh", &l, mt_v3(0, 0, 0),
+                         4 * asin(a * b / sqrt((a * a + 4 * d * d) * (b * b + 4 * d * d))));
+    mt_shape_destroy(s);
+    mt_paramset_destroy(ps);
+}
+
+/* The infinite light: E[1/pdf] = 4 pi; Sample_L's pdf equals Pdf; Pdf
+ * integrates to one; importance sampling estimates the map's integral
+ * (against a dense quadrature of Le) with far less variance than uniform
+ * sampling. */
+static void check_infinite(const char *name, const mt__light *l, int peaked)
+{
+    mt_rng rng;
+    acc inv = {0, 0, 0}, integ = {0, 0, 0}, imp = {0, 0, 0}, uni = {0, 0, 0};
+    double quad = 0, dt = PI_D / 1024, dp = 2 * PI_D / 2048;
+    long bad = 0;
+    int i, j;
+    char nm[160];
+    mt_rng_seed(&rng, 3, 9);
+    for (i = 0; i < 65536; ++i) {
+        mt__light_sample ls;
+        mt__light_sample_l(l, NULL, mt_v3(0, 0, 0), 0, mt_rng_uniform(&rng), mt_rng_uniform(&rng), &ls);
+        if (ls.pdf > 0) {
+            /* a sample within rounding of a cell border may read the neighbour;
+             * within 2.5 degrees of the poles a direction in float does not
+             * pin theta down to 1e-3 of sin(theta) */
+            double q = mt__light_pdf(l, mt_v3(0, 0, 0), ls.wi);
+            mt_vec3 wl = mt_transform_vector(&l->w2l, ls.wi);
+            if (fabs(q - ls.pdf) > 1e-3 * ls.pdf && fabs(wl.z) < 0.999) bad++;
+            acc_add(&inv, 1 / ls.pdf);
+            acc_add(&imp, mt_rgb_y(ls.Li) / ls.pdf);
+        } else {
+            acc_add(&inv, 0);
+            acc_add(&imp, 0);
+        }
+        {
+            mt_vec3 w = mt_uniform_sample_sphere(mt_rng_uniform(&rng), mt_rng_uniform(&rng));
+            acc_add(&integ, 4 * PI_D * mt__light_pdf(l, mt_v3(0, 0, 0), w));
+            acc_add(&uni, 4 * PI_D * mt_rgb_y(mt__light_le(l, w)));
+        }
+    }
+    for (j = 0; j < 1024; ++j) {
+        double th = (j + 0.5) * dt;
+        for (i = 0; i < 2048; ++i) {
+            double ph = (i + 0.5) * dp;
+            mt_vec3 w = mt_v3((mt_real)(sin(th) * cos(ph)), (mt_real)(sin(th) * sin(ph)), (mt_real)cos(th));
+            quad += mt_rgb_y(mt__light_le(l, w)) * sin(th) * dt * dp;
+        }
+    }
+    snprintf(nm, sizeof nm, "light %s: Sample_L's pdf equals Pdf", name);
+    t_check(bad <= 65536 / 10000, nm, "%ld of 65536 samples differ by more than 1e-3", bad);
+    snprintf(nm, sizeof nm, "light %s: E[1/pdf] = 4 pi", name);
+    t_check(fabs(acc_mean(&inv) - 4 * PI_D) <= 5 * acc_se(&inv) + 1e-4, nm, "%.6g +- %.2g",
+            acc_mean(&inv), acc_se(&inv));
+    snprintf(nm, sizeof nm, "light %s: Pdf integrates to 1", name);
+    t_check(fabs(acc_mean(&integ) - 1) <= 5 * acc_se(&integ) + 1e-3, nm, "%.5g +- %.2g",
+            acc_mean(&integ), acc_se(&integ));
+    snprintf(nm, sizeof nm, "light %s: importance sampling estimates the map's integral", name);
+    t_check(fabs(acc_mean(&imp) - quad) <= 5 * acc_se(&imp) + 2e-3 * quad, nm,
+            "%.6g +- %.2g, quadrature %.6g", acc_mean(&imp), acc_se(&imp), quad);
+    if (peaked) {
+        snprintf(nm, sizeof nm, "light %s: importance sampling beats uniform sampling", name);
+        t_check(acc_se(&imp) < 0.3 * acc_se(&uni), nm, "standard errors %.3g vs %.3g",
+                acc_se(&imp), acc_se(&uni));
+    }
+}
+
+static void test_infinite_lights(void)
+{
+    mt_paramset *ps = mt_paramset_create();
+    mt_transform rot = mt_rotate(30, mt_v3(1, 0.5f, 0));
+    mt_error err;
+    mt__light l;
+    mt_image img;
+    const char *dir;
+    int i;
+    char path[600];
+    if (mt__light_create(&l, "infinite", ps, &rot, MT_MODE_PBRT_V2, &err) == MT_OK) {
+        check_infinite("infinite constant", &l, 0);
+        mt__light_free(&l);
+    }
+    /* a 24x12 map, dim everywhere with a bright patch and a gradient */
+    dir = t_tmpdir_create("render-light");
+    if (!dir || mt_image_alloc(&img, 24, 12, 3, &err) != MT_OK) {
+        t_fail("light infinite map", "no temporary directory");
+        mt_paramset_destroy(ps);
+        return;
+    }
+    for (i = 0; i < 24 * 12; ++i) {
+        int x = i % 24, y = i / 24;
+        float v = 0.05f + 0.01f * x + ((x == 17 && (y == 3 || y == 4)) ? 300.0f : 0);
+        img.data[3 * i] = v, img.data[3 * i + 1] = 0.5f * v, img.data[3 * i + 2] = 0.2f + 0 * v;
+    }
+    snprintf(path, sizeof path, "%s/map.pfm", dir);
+    mt_image_write(path, &img, NULL, 0, &err);
+    mt_image_free(&img);
+    {
+        mt_param p;
+        const char *names[1];
+        memset(&p, 0, sizeof p);
+        names[0] = path;
+        p.name = "mapname";
+        p.type = MT_PARAM_STRING;
+        p.type_name = "string";
+        p.count = 1;
+        p.strings = names;
+        mt_paramset_add(ps, &p, NULL);
+    }
+    if (mt__light_create(&l, "infinite", ps, &rot, MT_MODE_PBRT_V2, &err) == MT_OK) {
+        check_infinite("infinite map", &l, 1);
+        mt__light_free(&l);
+    } else {
+        char buf[1024];
+        t_fail("light infinite map", "%s", mt_error_format(&err, buf, sizeof buf));
+    }
+    t_tmpdir_remove();
+    mt_paramset_destroy(ps);
+}
+
+static void test_delta_lights(void)
+{
+    mt_paramset *ps = mt_paramset_create();
+    mt_transform t = mt_translate(mt_v3(1, 2, 3));
+    mt_error err;
+    mt__light l;
+    mt__light_sample ls;
+    double c, want;
+    /* point: I / d^2, "from" added in world space after the transform */
+    mt__light_create(&l, "point", ps, &t, MT_MODE_PBRT_V2, &err);
+    mt__light_sample_l(&l, NULL, mt_v3(1, 2, 1), 0.3f, 0.3f, 0.3f, &ls);
+    t_check(ls.pdf == 1 && fabs(ls.Li.c[0] - 0.25) < 1e-6 && fabs(ls.wi.z - 1) < 1e-6 &&
+                fabs(mt_ray_at(&ls.shadow, 1).z - 3) < 1e-3,
+            "light point: I / d^2 towards the light", "Li %g wi.z %g", (double)ls.Li.c[0], (double)ls.wi.z);
+    /* spot: cone 30, delta 5, falloff ((cos t - cos 30) / (cos 25 - cos 30))^4 */
+    t = mt_transform_identity();
+    mt__light_create(&l, "spot", ps, &t, MT_MODE_PBRT_V2, &err);
+    c = cos(27.5 * PI_D / 180);
+    mt__light_sample_l(&l, NULL, mt_v3((mt_real)(2 * sin(27.5 * PI_D / 180)), 0, (mt_real)(2 * c)), 0, 0, 0, &ls);
+    want = pow((c - cos(30 * PI_D / 180)) / (cos(25 * PI_D / 180) - cos(30 * PI_D / 180)), 4) / 4;
+    t_rel(ls.Li.c[1], want, 1e-3, 1e-7, "light spot: pbrt-v2's quartic falloff");
+    mt__light_sample_l(&l, NULL, mt_v3(0, 0, 2), 0, 0, 0, &ls);
+    t_rel(ls.Li.c[1], 0.25, 1e-6, 0, "light spot: full intensity inside the inner cone");
+    mt__light_sample_l(&l, NULL, mt_v3(2, 0, 1), 0, 0, 0, &ls);
+    t_check(mt_rgb_is_black(ls.Li), "light spot: black outside the cone", "Li %g", (double)ls.Li.c[0]);
+    /* distant: wi = from - to, L */
+    mt__light_create(&l, "distant", ps, &t, MT_MODE_PBRT_V2, &err);
+    mt__light_sample_l(&l, NULL, mt_v3(5, 5, 5), 0, 0, 0, &ls);
+    t_check(fabs(ls.wi.z + 1) < 1e-6 && ls.pdf == 1 && ls.shadow.tmax > 1e30f,
+            "light distant: towards from - to, unbounded shadow ray", "wi.z %g", (double)ls.wi.z);
+    t_check(mt__light_create(&l, "goniometric", ps, &t, MT_MODE_PBRT_V2, &err) == MT_ERR_UNSUPPORTED,
+            "light goniometric unsupported", "status %d", err.status);
+    mt_paramset_destroy(ps);
+}
+
+int main(void)
+{
+    test_cameras();
+    test_filters();
+    test_film_normalization();
+    test_crop_window();
+    test_sampler();
+    test_area_lights();
+    test_infinite_lights();
+    test_delta_lights();
+    return t_status();
+}
