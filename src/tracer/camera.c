@@ -35,6 +35,7 @@ void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_
     mt_transform c2s = orthographic ? mt_orthographic(0, 1) : mt_perspective(fov_deg, (mt_real)1e-2, 1000);
     mt_transform s2c = mt_transform_inverse(&c2s);
     mt_vec3 o;
+    int i, j;
     c->orthographic = orthographic;
     c->raster_to_camera = mt_transform_compose(&s2c, &r2s);
     c->camera_to_world = *camera_to_world;
@@ -48,6 +49,24 @@ void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_
         c->dx_camera = mt_v3_sub(mt_transform_point(&c->raster_to_camera, mt_v3(1, 0, 0)), o);
         c->dy_camera = mt_v3_sub(mt_transform_point(&c->raster_to_camera, mt_v3(0, 1, 0)), o);
     }
+    /* raster depth 0 is the near plane (perspective) or z = 0 (orthographic):
+     * there the projective map is affine in (x, y) */
+    c->p00 = mt_transform_point(&c->raster_to_camera, mt_v3(0, 0, 0));
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 4; ++j) c->c2w[i][j] = (mt_real)camera_to_world->m.m[i][j];
+}
+
+static mt_vec3 to_world_vector(const mt__camera *c, mt_vec3 v)
+{
+    return mt_v3(c->c2w[0][0] * v.x + c->c2w[0][1] * v.y + c->c2w[0][2] * v.z,
+                 c->c2w[1][0] * v.x + c->c2w[1][1] * v.y + c->c2w[1][2] * v.z,
+                 c->c2w[2][0] * v.x + c->c2w[2][1] * v.y + c->c2w[2][2] * v.z);
+}
+
+static mt_vec3 to_world_point(const mt__camera *c, mt_vec3 p)
+{
+    mt_vec3 v = to_world_vector(c, p);
+    return mt_v3(v.x + c->c2w[0][3], v.y + c->c2w[1][3], v.z + c->c2w[2][3]);
 }
 
 /* The thin lens of both cameras: the ray through the lens point that meets
@@ -67,8 +86,8 @@ static void thin_lens(const mt__camera *c, const mt__camera_sample *s, mt_vec3 *
 
 void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff *rd)
 {
-    const mt_transform *w = &c->camera_to_world;
-    mt_vec3 pc = mt_transform_point(&c->raster_to_camera, mt_v3(s->image_x, s->image_y, 0));
+    mt_vec3 pc = mt_v3_add(c->p00, mt_v3_add(mt_v3_scale(c->dx_camera, s->image_x),
+                                             mt_v3_scale(c->dy_camera, s->image_y)));
     mt_vec3 o, d, rxo, ryo, rxd, ryd;
     if (c->orthographic) {
         o = pc;
@@ -86,10 +105,10 @@ void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff 
         rxd = mt_v3_normalize(mt_v3_add(pc, c->dx_camera));
         ryd = mt_v3_normalize(mt_v3_add(pc, c->dy_camera));
     }
-    rd->ray = mt_ray_make(mt_transform_point(w, o), mt_transform_vector(w, d), 0, MT_RAY_TMAX);
+    rd->ray = mt_ray_make(to_world_point(c, o), to_world_vector(c, d), 0, MT_RAY_TMAX);
     rd->has_differentials = 1;
-    rd->rx_o = mt_transform_point(w, rxo);
-    rd->ry_o = mt_transform_point(w, ryo);
-    rd->rx_d = mt_transform_vector(w, rxd);
-    rd->ry_d = mt_transform_vector(w, ryd);
+    rd->rx_o = to_world_point(c, rxo);
+    rd->ry_o = to_world_point(c, ryo);
+    rd->rx_d = to_world_vector(c, rxd);
+    rd->ry_d = to_world_vector(c, ryd);
 }

@@ -16,6 +16,9 @@ typedef struct mt__camera {
     mt_transform camera_to_world;
     mt_real lens_radius, focal_distance;
     mt_vec3 dx_camera, dy_camera; /* one raster pixel in x and y, in camera space */
+    mt_vec3 p00;                  /* raster (0, 0) in camera space: raster points of depth 0
+                                     map affinely, p00 + x dx_camera + y dy_camera */
+    mt_real c2w[3][4];            /* camera_to_world rounded to mt_real */
 } mt__camera;
 
 typedef struct mt__camera_sample {

@@ -86,15 +86,15 @@ mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt_
     return Ld;
 }
 
-mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex)
+mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex, mt_real comp[2])
 {
     const mt_scene *s = tc->scene;
-    mt_real sel[2], lpos[2], comp[2], dir[2], lu[3], bu[3];
+    mt_real sel[2], lpos[2], dir[2], lu[3], bu[3];
     int n = s->nlights, i;
+    mt__vertex_sample(tc, vertex, 2, 0, 1, comp);
     if (n == 0) return mt_rgb_black();
     mt__vertex_sample(tc, vertex, 0, 0, 1, sel);
     mt__vertex_sample(tc, vertex, 1, 0, 1, lpos);
-    mt__vertex_sample(tc, vertex, 2, 0, 1, comp);
     mt__vertex_sample(tc, vertex, 3, 0, 1, dir);
     i = (int)(sel[0] * (mt_real)n);
     if (i > n - 1) i = n - 1;

@@ -13,13 +13,36 @@
  *                   SpecularReflect, SpecularTransmit)
  * and SamplerRenderer::Li: rays that leave the scene see the lights' Le.
  */
+#include <string.h>
 #include "tracer/shading.h"
+
+void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, uint64_t seed,
+                            int x, int y)
+{
+    mt__pixel_sampler_init(&tc->sampler, tables, seed, x, y);
+    if (++tc->pixel_gen == 0) {
+        memset(tc->seed_cache, 0, sizeof tc->seed_cache);
+        tc->pixel_gen = 1;
+    }
+}
 
 void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2])
 {
     if (vertex < MT__LD_VERTICES) {
         uint32_t dim = MT__DIM_VERTEX0 + (uint32_t)vertex * 0x10000u + k;
-        mt__sample_2d(&tc->sampler, dim, tc->index * (uint32_t)n + (uint32_t)j, out);
+        uint32_t index = tc->index * (uint32_t)n + (uint32_t)j;
+        mt__dim_seeds local, *ds = &local;
+        if (k < MT__SEED_CACHE_PAIRS) {
+            mt__seed_slot *slot = &tc->seed_cache[vertex][k];
+            if (slot->gen != tc->pixel_gen) {
+                mt__dim_seeds_init(&tc->sampler, dim, &slot->seeds);
+                slot->gen = tc->pixel_gen;
+            }
+            ds = &slot->seeds;
+        } else {
+            mt__dim_seeds_init(&tc->sampler, dim, ds);
+        }
+        mt__sample_2d_seeded(tc->sampler.tables, ds, index, out);
         return;
     }
     out[0] = mt_rng_uniform(&tc->rng);
@@ -47,9 +70,8 @@ static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *fi
         mt_bsdf_sample bs;
         if (!mt__vertex_shade(tc, &hit, &ray, bounces == 0 ? rd : NULL, &v)) break;
         if (bounces == 0 || specular) L = mt_rgb_add(L, mt_rgb_mul(beta, mt__vertex_le(s, &v)));
-        L = mt_rgb_add(L, mt_rgb_mul(beta, mt__sample_one_light(tc, &v, bounces)));
+        L = mt_rgb_add(L, mt_rgb_mul(beta, mt__sample_one_light(tc, &v, bounces, comp)));
         /* the next direction: pair 2's second value and pair 4 */
-        mt__vertex_sample(tc, bounces, 2, 0, 1, comp);
         mt__vertex_sample(tc, bounces, 4, 0, 1, dir);
         bs = mt_bsdf_sample_f(v.bsdf, v.wo, comp[1], dir[0], dir[1], MT_BSDF_ALL);
         if (mt_rgb_is_black(bs.f) || bs.pdf == 0) break;
@@ -139,9 +161,11 @@ static mt_rgb direct_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *
     if (!mt__vertex_shade(tc, hit, &rd->ray, rd->has_differentials ? rd : NULL, &v))
         return mt_rgb_black();
     L = mt__vertex_le(s, &v);
-    if (s->nlights > 0)
+    if (s->nlights > 0) {
+        mt_real unused[2];
         L = mt_rgb_add(L, s->strategy_all ? mt__sample_all_lights(tc, &v, depth)
-                                          : mt__sample_one_light(tc, &v, depth));
+                                          : mt__sample_one_light(tc, &v, depth, unused));
+    }
     if (depth + 1 < s->maxdepth) {
         mt_real comps[2], r[2], t[2], ur[3], ut[3];
         mt__vertex_sample(tc, depth, 4, 0, 1, comps);

@@ -68,10 +68,16 @@ mt_status mt__light_create(mt__light *l, const char *type, const mt_paramset *ps
                            const mt_transform *l2w, mt_mode mode, mt_error *err)
 {
     mt_status st;
+    int i, j;
     memset(l, 0, sizeof *l);
     l->nsamples = 1;
     l->l2w = *l2w;
     l->w2l = mt_transform_inverse(l2w);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) {
+            l->l2w3[i][j] = (mt_real)l->l2w.m.m[i][j];
+            l->w2l3[i][j] = (mt_real)l->w2l.m.m[i][j];
+        }
     if (strcmp(type, "point") == 0) {
         mt_vec3 from;
         l->kind = MT__LIGHT_POINT;
@@ -196,7 +202,18 @@ void mt__light_sample_l(const mt__light *l, const mt_surface *sf, mt_vec3 p, mt_
         if (out->pdf > 0) out->shadow = ray_along(sf, p, out->wi);
         return;
     case MT__LIGHT_AREA: {
-        mt_vec3 ns, ps = mt_shape_set_sample_from(l->shape, p, ucomp, u1, u2, &ns);
+        mt_vec3 ns, ps;
+        mt_shape_kind k = mt_shape_kind_of(l->shape);
+        /* pbrt-v2's ShapeSet re-intersects the ray from p towards the sample
+         * with its shapes and keeps that point and its normal. A lone sphere
+         * or disk gives back the sampled point itself (the sample is the
+         * first hit of that ray), and the sampled normal equals the hit's
+         * unless the transform swaps handedness: skip the re-intersection. */
+        if ((k == MT_SHAPE_SPHERE || k == MT_SHAPE_DISK) &&
+            mt_shape_flip(l->shape) == mt_shape_reverse_orientation(l->shape))
+            ps = mt_shape_sample_from(l->shape, 0, p, u1, u2, &ns);
+        else
+            ps = mt_shape_set_sample_from(l->shape, p, ucomp, u1, u2, &ns);
         d = mt_v3_sub(ps, p);
         if (!(mt_v3_len2(d) > 0) || !mt_v3_is_finite(d)) return;
         out->wi = mt_v3_normalize(d);

@@ -27,6 +27,7 @@ typedef struct mt__light {
     mt_vec3 pos;            /* point, spot */
     mt_vec3 dir;            /* distant: unit direction towards the light */
     mt_transform w2l, l2w;  /* spot (direction to +z) and infinite lights */
+    mt_real w2l3[3][3], l2w3[3][3]; /* their linear parts rounded to mt_real */
     mt_real cos_total, cos_falloff; /* spot */
     mt_mipmap *map;         /* infinite with a mapname: the map times L (owned) */
     mt__distrib2d distrib;  /* infinite: pbrt-v2's sampling distribution (1x1 when constant) */
@@ -72,6 +73,14 @@ static inline mt_rgb mt__area_light_l(const mt__light *l, mt_vec3 n, mt_vec3 w)
 /* Le(ray) of a ray with direction d that leaves the scene (infinite lights;
  * black for the others). */
 mt_rgb mt__light_le(const mt__light *l, mt_vec3 d);
+
+/* A direction through a linear part (w2l3, l2w3). */
+static inline mt_vec3 mt__m3_apply(const mt_real m[3][3], mt_vec3 v)
+{
+    return mt_v3(m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+                 m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+                 m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z);
+}
 
 /* Infinite lights (light_infinite.c). */
 mt_status mt__infinite_init(mt__light *l, const char *mapname, mt_mode mode, mt_error *err);

@@ -82,7 +82,7 @@ mt_rgb mt__infinite_le(const mt__light *l, mt_vec3 d)
 {
     mt_vec3 w;
     if (!l->map) return l->L;
-    w = mt_v3_normalize(mt_transform_vector(&l->w2l, d));
+    w = mt_v3_normalize(mt__m3_apply(l->w2l3, d));
     return radiance_at(l, mt_spherical_phi(w) * MT_INV_2PI, mt_spherical_theta(w) * MT_INV_PI);
 }
 
@@ -100,7 +100,7 @@ void mt__infinite_sample(const mt__light *l, mt_real u1, mt_real u2, mt_vec3 *wi
     st = mt_sin(theta);
     if (st == 0) return;
     *wi = mt_v3_normalize(
-        mt_transform_vector(&l->l2w, mt_v3(st * mt_cos(phi), st * mt_sin(phi), ct)));
+        mt__m3_apply(l->l2w3, mt_v3(st * mt_cos(phi), st * mt_sin(phi), ct)));
     /* dA = (2 pi) (pi) sin(theta) du dv */
     *pdf = map_pdf / (2 * MT_PI * MT_PI * st);
     *Li = radiance_at(l, uv[0], uv[1]);
@@ -108,8 +108,17 @@ void mt__infinite_sample(const mt__light *l, mt_real u1, mt_real u2, mt_vec3 *wi
 
 mt_real mt__infinite_pdf(const mt__light *l, mt_vec3 wi)
 {
-    mt_vec3 w = mt_v3_normalize(mt_transform_vector(&l->w2l, wi));
-    mt_real theta = mt_spherical_theta(w), phi = mt_spherical_phi(w), st = mt_sin(theta);
+    mt_vec3 w = mt_v3_normalize(mt__m3_apply(l->w2l3, wi));
+    mt_real theta, phi, st;
+    if (!l->map) {
+        /* one cell: the density is uniform in (phi, theta) */
+        st = mt_sqrt(mt_max(0, 1 - w.z * w.z));
+        if (st == 0 || !(l->distrib.marginal.func_int > 0)) return 0;
+        return 1 / (2 * MT_PI * MT_PI * st);
+    }
+    theta = mt_spherical_theta(w);
+    phi = mt_spherical_phi(w);
+    st = mt_sin(theta);
     if (st == 0) return 0;
     return mt__distrib2d_pdf(&l->distrib, phi * MT_INV_2PI, theta * MT_INV_PI) /
            (2 * MT_PI * MT_PI * st);

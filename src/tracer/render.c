@@ -67,7 +67,10 @@ static void render_tile(render_job *job, mt__thread_ctx *tc, int t, mt__film_buf
     mt__film_buf_cover(film, buf, x0, x1, y0, y1);
     for (y = y0; y < y1; ++y)
         for (x = x0; x < x1; ++x) {
-            mt__pixel_sampler_init(&tc->sampler, &job->tables, job->seed, x, y);
+            mt__dim_seeds image_seeds, lens_seeds;
+            mt__thread_start_pixel(tc, &job->tables, job->seed, x, y);
+            mt__dim_seeds_init(&tc->sampler, MT__DIM_IMAGE, &image_seeds);
+            mt__dim_seeds_init(&tc->sampler, MT__DIM_LENS, &lens_seeds);
             for (i = 0; i < job->spp; ++i) {
                 mt__camera_sample cs;
                 mt_raydiff rd;
@@ -75,12 +78,12 @@ static void render_tile(render_job *job, mt__thread_ctx *tc, int t, mt__film_buf
                 mt_rgb L;
                 tc->index = (uint32_t)i;
                 mt_rng_seed(&tc->rng, mt__hash_combine(tc->sampler.seed, (uint32_t)i), 0);
-                mt__sample_2d(&tc->sampler, MT__DIM_IMAGE, (uint32_t)i, u);
+                mt__sample_2d_seeded(&job->tables, &image_seeds, (uint32_t)i, u);
                 cs.image_x = (mt_real)x + u[0];
                 cs.image_y = (mt_real)y + u[1];
                 cs.lens_u = cs.lens_v = (mt_real)0.5;
                 if (s->camera.lens_radius > 0) {
-                    mt__sample_2d(&tc->sampler, MT__DIM_LENS, (uint32_t)i, u);
+                    mt__sample_2d_seeded(&job->tables, &lens_seeds, (uint32_t)i, u);
                     cs.lens_u = u[0];
                     cs.lens_v = u[1];
                 }

@@ -17,6 +17,17 @@ static uint32_t reverse_bits(uint32_t v)
     return v;
 }
 
+/* Both halves of v bit-reversed in place (two 32-bit reversals at once). */
+static uint64_t reverse_bits_pairs(uint64_t v)
+{
+    v = ((v & 0x0000ffff0000ffffull) << 16) | ((v >> 16) & 0x0000ffff0000ffffull);
+    v = ((v & 0x00ff00ff00ff00ffull) << 8) | ((v >> 8) & 0x00ff00ff00ff00ffull);
+    v = ((v & 0x0f0f0f0f0f0f0f0full) << 4) | ((v >> 4) & 0x0f0f0f0f0f0f0f0full);
+    v = ((v & 0x3333333333333333ull) << 2) | ((v >> 2) & 0x3333333333333333ull);
+    v = ((v & 0x5555555555555555ull) << 1) | ((v >> 1) & 0x5555555555555555ull);
+    return v;
+}
+
 /* The Laine-Karras permutation with Burley's constants: each output bit
  * depends only on the input bits below it, so in bit-reversed order it is a
  * nested uniform (Owen) scramble. */
@@ -77,27 +88,49 @@ void mt__pixel_sampler_init(mt__pixel_sampler *ps, const mt__sobol_tables *table
     ps->seed = h;
 }
 
-void mt__sample_2d_bits(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index,
-                        uint32_t out[2])
+void mt__dim_seeds_init(const mt__pixel_sampler *ps, uint32_t dim, mt__dim_seeds *ds)
 {
-    const mt__sobol_tables *t = ps->tables;
     uint32_t s = mt__hash_combine(ps->seed, dim);
-    uint32_t s1 = mt__hash32(s ^ 0x68e31da4u), s2 = mt__hash32(s ^ 0xb5297a4du);
+    ds->shuffle = s;
+    ds->sx = mt__hash32(s ^ 0x68e31da4u);
+    ds->sy = mt__hash32(s ^ 0xb5297a4du);
+}
+
+void mt__sample_2d_seeded_bits(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
+                               uint32_t out[2])
+{
     /* nested uniform shuffle of the index (Burley section 4) */
-    uint32_t i = reverse_bits(lk_permute(reverse_bits(index), s));
+    uint32_t i = reverse_bits(lk_permute(reverse_bits(index), ds->shuffle));
     /* the Sobol' coordinates in bit-reversed order: van der Corput reversed is
      * the index itself; the second dimension through the byte tables */
     uint32_t y = t->t[0][i & 0xff] ^ t->t[1][(i >> 8) & 0xff] ^ t->t[2][(i >> 16) & 0xff] ^
                  t->t[3][i >> 24];
     /* Owen scrambling of each coordinate, then back to natural bit order */
-    out[0] = reverse_bits(lk_permute(i, s1));
-    out[1] = reverse_bits(lk_permute(y, s2));
+    uint64_t both = reverse_bits_pairs(((uint64_t)lk_permute(i, ds->sx) << 32) | lk_permute(y, ds->sy));
+    out[0] = (uint32_t)(both >> 32);
+    out[1] = (uint32_t)both;
+}
+
+void mt__sample_2d_seeded(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
+                          mt_real out[2])
+{
+    uint32_t b[2];
+    mt__sample_2d_seeded_bits(t, ds, index, b);
+    out[0] = mt__u32_to_unit(b[0]);
+    out[1] = mt__u32_to_unit(b[1]);
+}
+
+void mt__sample_2d_bits(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index,
+                        uint32_t out[2])
+{
+    mt__dim_seeds ds;
+    mt__dim_seeds_init(ps, dim, &ds);
+    mt__sample_2d_seeded_bits(ps->tables, &ds, index, out);
 }
 
 void mt__sample_2d(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index, mt_real out[2])
 {
-    uint32_t b[2];
-    mt__sample_2d_bits(ps, dim, index, b);
-    out[0] = mt__u32_to_unit(b[0]);
-    out[1] = mt__u32_to_unit(b[1]);
+    mt__dim_seeds ds;
+    mt__dim_seeds_init(ps, dim, &ds);
+    mt__sample_2d_seeded(ps->tables, &ds, index, out);
 }

@@ -41,6 +41,20 @@ uint32_t mt__hash_combine(uint32_t a, uint32_t b);
 void mt__pixel_sampler_init(mt__pixel_sampler *ps, const mt__sobol_tables *tables,
                             uint64_t seed, int x, int y);
 
+/* The scrambling seeds of one dimension pair of one pixel: the index shuffle
+ * and the two coordinates' Owen scrambles. A renderer may keep them for the
+ * pixel's samples (they depend on the pixel and the pair only). */
+typedef struct mt__dim_seeds {
+    uint32_t shuffle, sx, sy;
+} mt__dim_seeds;
+
+void mt__dim_seeds_init(const mt__pixel_sampler *ps, uint32_t dim, mt__dim_seeds *ds);
+/* Point `index` of the pair with seeds ds: 32-bit coordinates, and in [0, 1). */
+void mt__sample_2d_seeded_bits(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
+                               uint32_t out[2]);
+void mt__sample_2d_seeded(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
+                          mt_real out[2]);
+
 /* Point `index` of dimension pair `dim`: two values in [0, 1). */
 void mt__sample_2d(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index, mt_real out[2]);
 

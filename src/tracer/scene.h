@@ -47,10 +47,20 @@ struct mt_scene {
 
 /* ---- the integrators' per-thread context ------------------------------------ */
 
+/* The dimension pairs whose seeds a thread keeps for the current pixel. */
+#define MT__SEED_CACHE_PAIRS 32
+
+typedef struct mt__seed_slot {
+    uint32_t gen; /* valid when equal to the thread's pixel generation */
+    mt__dim_seeds seeds;
+} mt__seed_slot;
+
 typedef struct mt__thread_ctx {
     const mt_scene *scene;
     mt_arena *arena;
     mt__pixel_sampler sampler;
+    uint32_t pixel_gen; /* changes with every pixel: invalidates the cache */
+    mt__seed_slot seed_cache[4][MT__SEED_CACHE_PAIRS];
     uint32_t index;   /* the camera sample's index in its pixel */
     mt_rng rng;       /* dimensions beyond the low-discrepancy ones */
     long shading_failures;
@@ -68,6 +78,10 @@ typedef struct mt__thread_ctx {
 #define MT__DIM_VERTEX0 2u
 #define MT__DIMS_PER_VERTEX 8u
 #define MT__LD_VERTICES 4
+
+/* Starts a pixel: its sampler, and the seed cache emptied. */
+void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, uint64_t seed,
+                            int x, int y);
 
 /* Two uniform values for pair `k` of vertex `vertex`, array element `j` of
  * `n` (n = 1 for a single sample). */

@@ -33,8 +33,9 @@ mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt_
 
 /* UniformSampleOneLight at path vertex `vertex` (dimension pairs 0, 1, 2, 3
  * of its block: light choice and component, light position, BSDF component,
- * BSDF direction). */
-mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex);
+ * BSDF direction). comp receives pair 2, whose second value is the path
+ * integrator's component choice. */
+mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex, mt_real comp[2]);
 /* UniformSampleAllLights: every light with its sample count (pairs 8 + 3j,
  * 9 + 3j, 10 + 3j for light j, as arrays). */
 mt_rgb mt__sample_all_lights(mt__thread_ctx *tc, const mt__vertex *v, int vertex);

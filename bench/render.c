@@ -1,0 +1,119 @@
+/*
+ * Renderer speed on the reference material scenes of
+ * ../shared/reference/scenes (160x120, box filter, path, maxdepth 5):
+ *
+ *   render_<scene>_1t      camera samples per second on one thread (CPU time
+ *                          of the rendering thread's process)
+ *   render_<scene>_2t      camera samples per second on two threads (wall
+ *                          clock), as pbrt-v2's times were taken
+ *   render_<scene>_vs_pbrt the projected wall time of the whole scene at its
+ *                          own 1024 samples per pixel on two threads (load +
+ *                          render time per sample x samples) divided by
+ *                          pbrt-v2's time in pbrt-v2/times.txt (target: <= 0.5)
+ *
+ * Renders use MATERIA_BENCH_SPP samples per pixel (default 32; the time per
+ * sample does not depend on the count, and 1024 reproduces the full scene).
+ * Without the shared reference data the benchmark says so and exits.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "support/check.h"
+#include "support/trender.h"
+
+static const char *scenes[] = {"matte", "plastic", "glass", "mirror", "metal", "shinymetal",
+                               "substrate", "translucent", "uber", "mix", "measured"};
+
+static double now(clockid_t c)
+{
+    struct timespec t;
+    clock_gettime(c, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* pbrt-v2's wall time for a scene from times.txt, 0 when absent. */
+static double pbrt_time(const char *shared, const char *scene)
+{
+    char path[1024], name[64];
+    double t, found = 0;
+    FILE *f;
+    snprintf(path, sizeof path, "%s/reference/pbrt-v2/times.txt", shared);
+    if (!(f = fopen(path, "r"))) return 0;
+    while (fscanf(f, "%63s", name) == 1) {
+        if (name[0] == '#') {
+            int c;
+            while ((c = fgetc(f)) != EOF && c != '\n') {}
+            continue;
+        }
+        if (fscanf(f, "%lf", &t) == 1 && strcmp(name, scene) == 0) found = t;
+    }
+    fclose(f);
+    return found;
+}
+
+/* Renders s; *secs receives the wall time (threads > 1) or the process CPU
+ * time (one thread). Returns the samples traced, 0 on failure. */
+static double run(const mt_scene *s, int spp, int threads, double *secs)
+{
+    mt_render_options o;
+    mt_render_stats st;
+    mt_image img;
+    mt_error err;
+    double c0 = now(CLOCK_PROCESS_CPUTIME_ID), c1;
+    mt_render_options_default(&o);
+    o.spp = spp;
+    o.threads = threads;
+    if (mt_scene_render(s, &o, &img, NULL, &st, &err) != MT_OK) return 0;
+    c1 = now(CLOCK_PROCESS_CPUTIME_ID);
+    mt_image_free(&img);
+    *secs = threads == 1 ? c1 - c0 : st.seconds;
+    return st.samples;
+}
+
+int main(void)
+{
+    const char *shared = t_shared_dir(), *env = getenv("MATERIA_BENCH_SPP");
+    int spp = env && atoi(env) > 0 ? atoi(env) : 32;
+    size_t i;
+    if (!shared) {
+        printf("render: no ../shared/reference data; skipped\n");
+        return 0;
+    }
+    for (i = 0; i < sizeof scenes / sizeof scenes[0]; ++i) {
+        char path[1024], name[128];
+        mt_render_options o;
+        mt_error err;
+        mt_scene *s;
+        double t0, load, secs, n, full, pbrt;
+        snprintf(path, sizeof path, "%s/reference/scenes/%s.pbrt", shared, scenes[i]);
+        mt_render_options_default(&o);
+        t0 = now(CLOCK_MONOTONIC);
+        s = mt_scene_load(path, &o, &err);
+        load = now(CLOCK_MONOTONIC) - t0;
+        if (!s) {
+            char buf[1024];
+            printf("render: %s\n", mt_error_format(&err, buf, sizeof buf));
+            return 1;
+        }
+        if (i < 2 && (n = run(s, spp, 1, &secs)) > 0) {
+            snprintf(name, sizeof name, "render_%s_1t", scenes[i]);
+            printf("BENCH %s %.4g samples/s\n", name, n / secs);
+        }
+        if ((n = run(s, spp, 2, &secs)) > 0) {
+            snprintf(name, sizeof name, "render_%s_2t", scenes[i]);
+            printf("BENCH %s %.4g samples/s\n", name, n / secs);
+            full = load + secs / n * n / spp * mt_scene_spp(s);
+            pbrt = pbrt_time(shared, scenes[i]);
+            if (pbrt > 0) {
+                snprintf(name, sizeof name, "render_%s_vs_pbrt", scenes[i]);
+                printf("BENCH %s %.3f ratio\n", name, full / pbrt);
+                printf("%-12s projected %.1f s at %d spp on 2 threads, pbrt-v2 %.1f s\n", scenes[i],
+                       full, mt_scene_spp(s), pbrt);
+            }
+        }
+        mt_scene_destroy(s);
+    }
+    return 0;
+}
