@@ -32,19 +32,48 @@ mt_rgb mt__vertex_le(const mt_scene *s, const mt__vertex *v)
 
 #define NON_SPECULAR ((unsigned)MT_BSDF_ALL & ~(unsigned)MT_BSDF_SPECULAR)
 
+/* Lights with at most this many primitives are tested directly by the
+ * BSDF-sampled rays of direct lighting (a closest hit over the scene
+ * otherwise). */
+#define DIRECT_TEST_PRIMS 16u
+
 /* Radiance from `light` arriving along a BSDF-sampled ray: its area light if
- * the ray's first hit is on it, its Le if the ray leaves the scene. */
+ * the ray's first hit is on it, its Le if the ray leaves the scene (pbrt-v2's
+ * EstimateDirect traces the ray and compares the primitive it hits). The
+ * same answer comes cheaper as "the light's nearest hit, then nothing else
+ * before it" -- an any-hit query, and none at all when the ray misses a
+ * small light -- or, for an infinite light, "nothing at all in the way". */
 static mt_rgb light_along(const mt_scene *s, const mt__light *light, const mt_ray *ray)
 {
     mt_hit hit;
+    mt_surface sf;
+    if (light->kind == MT__LIGHT_INFINITE)
+        return mt_geometry_occluded(s->geom, ray) ? mt_rgb_black() : mt__light_le(light, ray->d);
+    if (light->kind != MT__LIGHT_AREA) return mt_rgb_black();
+    if (mt_shape_prim_count(light->shape) <= DIRECT_TEST_PRIMS) {
+        mt_ray r = *ray, before;
+        uint32_t k, n = mt_shape_prim_count(light->shape);
+        int any = 0;
+        for (k = 0; k < n; ++k)
+            if (mt_shape_intersect(light->shape, k, &r, &hit)) {
+                r.tmax = hit.t;
+                any = 1;
+            }
+        if (!any) return mt_rgb_black();
+        r.tmax = hit.t; /* the nearest of the light's hits */
+        before = *ray;
+        before.tmax = hit.t * (1 - (mt_real)1e-4); /* the light itself is not in the way */
+        if (mt_geometry_occluded(s->geom, &before)) return mt_rgb_black();
+        mt_hit_surface(&hit, &r, &sf);
+        return mt__area_light_l(light, sf.dg.n, mt_v3_neg(ray->d));
+    }
     if (mt_geometry_intersect(s->geom, ray, &hit)) {
         const mt__prim_info *info = mt_shape_user(hit.shape);
-        mt_surface sf;
         if (info->light < 0 || &s->lights[info->light] != light) return mt_rgb_black();
         mt_hit_surface(&hit, ray, &sf);
         return mt__area_light_l(light, sf.dg.n, mt_v3_neg(ray->d));
     }
-    return mt__light_le(light, ray->d);
+    return mt_rgb_black();
 }
 
 mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt__vertex *v,

@@ -96,8 +96,8 @@ void mt__dim_seeds_init(const mt__pixel_sampler *ps, uint32_t dim, mt__dim_seeds
     ds->sy = mt__hash32(s ^ 0xb5297a4du);
 }
 
-void mt__sample_2d_seeded_bits(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
-                               uint32_t out[2])
+/* Point `index` of a pair: x in the high half, y in the low half. */
+static uint64_t sample_bits(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index)
 {
     /* nested uniform shuffle of the index (Burley section 4) */
     uint32_t i = reverse_bits(lk_permute(reverse_bits(index), ds->shuffle));
@@ -106,7 +106,13 @@ void mt__sample_2d_seeded_bits(const mt__sobol_tables *t, const mt__dim_seeds *d
     uint32_t y = t->t[0][i & 0xff] ^ t->t[1][(i >> 8) & 0xff] ^ t->t[2][(i >> 16) & 0xff] ^
                  t->t[3][i >> 24];
     /* Owen scrambling of each coordinate, then back to natural bit order */
-    uint64_t both = reverse_bits_pairs(((uint64_t)lk_permute(i, ds->sx) << 32) | lk_permute(y, ds->sy));
+    return reverse_bits_pairs(((uint64_t)lk_permute(i, ds->sx) << 32) | lk_permute(y, ds->sy));
+}
+
+void mt__sample_2d_seeded_bits(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
+                               uint32_t out[2])
+{
+    uint64_t both = sample_bits(t, ds, index);
     out[0] = (uint32_t)(both >> 32);
     out[1] = (uint32_t)both;
 }
@@ -114,10 +120,9 @@ void mt__sample_2d_seeded_bits(const mt__sobol_tables *t, const mt__dim_seeds *d
 void mt__sample_2d_seeded(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
                           mt_real out[2])
 {
-    uint32_t b[2];
-    mt__sample_2d_seeded_bits(t, ds, index, b);
-    out[0] = mt__u32_to_unit(b[0]);
-    out[1] = mt__u32_to_unit(b[1]);
+    uint64_t both = sample_bits(t, ds, index);
+    out[0] = mt__u32_to_unit((uint32_t)(both >> 32));
+    out[1] = mt__u32_to_unit((uint32_t)both);
 }
 
 void mt__sample_2d_bits(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index,
