@@ -112,6 +112,12 @@ void mt__film_add(const mt__film *f, mt__film_buf *b, mt_real ix, mt_real iy, mt
     l[0] = L.c[0];
     l[1] = L.c[1];
     l[2] = L.c[2];
+    if (x0 == x1 && y0 == y1 && flt->kind == MT__FILTER_BOX) {
+        /* pbrt-v2's default: a box of half-width 0.5 reaches one pixel */
+        if (x0 >= b->x0 && x0 < b->x0 + b->w && y0 >= b->y0 && y0 < b->y0 + b->h)
+            accumulate(&b->px[(size_t)(y0 - b->y0) * (size_t)b->w + (size_t)(x0 - b->x0)], 1.0, l);
+        return;
+    }
     if (x0 < b->x0) x0 = b->x0;
     if (x1 > b->x0 + b->w - 1) x1 = b->x0 + b->w - 1;
     if (y0 < b->y0) y0 = b->y0;

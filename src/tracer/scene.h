@@ -47,6 +47,8 @@ struct mt_scene {
 
 /* ---- the integrators' per-thread context ------------------------------------ */
 
+/* Path vertices (directlighting depths) with low-discrepancy samples. */
+#define MT__LD_VERTICES 3
 /* The dimension pairs whose seeds a thread keeps for the current pixel. */
 #define MT__SEED_CACHE_PAIRS 32
 
@@ -60,7 +62,7 @@ typedef struct mt__thread_ctx {
     mt_arena *arena;
     mt__pixel_sampler sampler;
     uint32_t pixel_gen; /* changes with every pixel: invalidates the cache */
-    mt__seed_slot seed_cache[4][MT__SEED_CACHE_PAIRS];
+    mt__seed_slot seed_cache[MT__LD_VERTICES][MT__SEED_CACHE_PAIRS];
     uint32_t index;   /* the camera sample's index in its pixel */
     mt_rng rng;       /* dimensions beyond the low-discrepancy ones */
     long shading_failures;
@@ -69,15 +71,13 @@ typedef struct mt__thread_ctx {
 } mt__thread_ctx;
 
 /* Dimension pairs of a camera sample: the image position, the lens, then
- * per path vertex (or directlighting depth) a block of MT__DIMS_PER_VERTEX
- * pairs, for the first MT__LD_VERTICES vertices; deeper vertices draw from
+ * per path vertex (or directlighting depth) a block of pairs (numbered
+ * vertex * 2^16 + k), for the first MT__LD_VERTICES vertices; deeper vertices draw from
  * the PCG stream seeded by (pixel, sample) (pbrt-v2 likewise switches to its
  * RNG after SAMPLE_DEPTH = 3 vertices). */
 #define MT__DIM_IMAGE 0u
 #define MT__DIM_LENS 1u
 #define MT__DIM_VERTEX0 2u
-#define MT__DIMS_PER_VERTEX 8u
-#define MT__LD_VERTICES 4
 
 /* Starts a pixel: its sampler, and the seed cache emptied. */
 void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, uint64_t seed,
