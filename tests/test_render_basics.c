@@ -53,17 +53,6 @@ static mt_vec3 unit(mt_vec3 v) { return mt_v3_normalize(v); }
 
 /* ---- cameras ------------------------------------------------------------------ */
 
-static mt_scene *scene_or_fail(const char *name, const char *text)
-{
-    mt_error err;
-    mt_scene *s = t_scene(text, NULL, NULL, &err);
-    if (!s) {
-        char buf[1024];
-        t_fail(name, "scene: %s", mt_error_format(&err, buf, sizeof buf));
-    }
-    return s;
-}
-
 static mt_raydiff ray_at(const mt_scene *s, double x, double y)
 {
     mt__camera_sample cs;
@@ -105,7 +94,7 @@ static void check_camera(const char *name, const char *text, frame3 f, const dou
                          int yres, double fov, int mirror)
 {
     static const double pts[][2] = {{0, 0}, {0.5, 0.5}, {1, 0.25}, {0.3, 1}, {0.77, 0.61}};
-    mt_scene *s = scene_or_fail(name, text);
+    mt_scene *s = t_scene_or_fail(name, text);
     double worst = 0, worst_dx = 0, worst_o = 0;
     size_t i;
     if (!s) return;
@@ -159,7 +148,7 @@ static void test_cameras(void)
                  f1, (double[4]){-80.0 / 60, 80.0 / 60, -1, 1}, 80, 60, 70, 1);
 
     /* orthographic: origins on the screen window in the camera plane, one direction */
-    s = scene_or_fail("camera orthographic",
+    s = t_scene_or_fail("camera orthographic",
                       "LookAt 1 2 3  4 -1 5  0 0 1 Camera \"orthographic\" \"float screenwindow\" [-2 2 -1 1]\n"
                       "Film \"image\" \"integer xresolution\" [40] \"integer yresolution\" [20]\n"
                       "WorldBegin WorldEnd\n");
@@ -180,7 +169,7 @@ static void test_cameras(void)
     }
 
     /* thin lens: rays through different lens points meet on the plane of focus */
-    s = scene_or_fail("camera thin lens",
+    s = t_scene_or_fail("camera thin lens",
                       "LookAt 1 2 3  4 -1 5  0 0 1\n"
                       "Camera \"perspective\" \"float fov\" [40] \"float lensradius\" [0.2] \"float focaldistance\" [3]\n"
                       "Film \"image\" \"integer xresolution\" [50] \"integer yresolution\" [50]\n"
@@ -359,7 +348,7 @@ static void test_crop_window(void)
     mt_scene *s;
     int x0, y0, w, h, x, y, same = 1;
     snprintf(text, sizeof text, crop_scene, "");
-    s = scene_or_fail("film crop window", text);
+    s = t_scene_or_fail("film crop window", text);
     if (!s || t_render(s, 0, 2, 3, &full, NULL, &err) != MT_OK) {
         mt_scene_destroy(s);
         t_fail("film crop window", "render failed");
@@ -369,7 +358,7 @@ static void test_crop_window(void)
     /* pbrt-v2: x0 = ceil(32 * .25) = 8, width = ceil(32 * .75) - 8 = 16; the
      * pairs are put in order; y0 = ceil(24 * .1) = 3, height = ceil(24 * .6) - 3 = 12 */
     snprintf(text, sizeof text, crop_scene, "\"float cropwindow\" [0.75 0.25 0.1 0.6]");
-    s = scene_or_fail("film crop window", text);
+    s = t_scene_or_fail("film crop window", text);
     if (!s) return;
     x0 = s->film.x0, y0 = s->film.y0, w = s->film.width, h = s->film.height;
     t_check(x0 == 8 && w == 16 && y0 == 3 && h == 12, "film crop window in pixels (pbrt-v2's rounding)",

@@ -24,21 +24,10 @@
 
 #define PI_D 3.14159265358979323846
 
-static mt_scene *load(const char *name, const char *text)
-{
-    mt_error err;
-    mt_scene *s = t_scene(text, NULL, NULL, &err);
-    if (!s) {
-        char buf[1024];
-        t_fail(name, "scene: %s", mt_error_format(&err, buf, sizeof buf));
-    }
-    return s;
-}
-
 static int render(const char *name, const char *text, int spp, mt_image *img, mt_image *var)
 {
     mt_error err;
-    mt_scene *s = load(name, text);
+    mt_scene *s = t_scene_or_fail(name, text);
     mt_status st;
     if (!s) return 0;
     st = t_render(s, spp, 0, 1, img, var, &err);
@@ -290,7 +279,7 @@ static mt_status render_opts(const mt_scene *s, int spp, int threads, int tile, 
 
 static void test_threads_identical(void)
 {
-    mt_scene *s = load("threads", busy_scene);
+    mt_scene *s = t_scene_or_fail("threads", busy_scene);
     mt_image one, two, three;
     if (!s) return;
     if (render_opts(s, 0, 1, 8, &one) == MT_OK && render_opts(s, 0, 2, 8, &two) == MT_OK &&
@@ -312,7 +301,7 @@ static void test_threads_identical(void)
 
 static void test_no_allocation_per_sample(void)
 {
-    mt_scene *s = load("allocation", busy_scene);
+    mt_scene *s = t_scene_or_fail("allocation", busy_scene);
     mt_image img;
     unsigned long c0, c1, c2;
     int threads;

@@ -127,12 +127,8 @@ mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex,
     mt__vertex_sample(tc, vertex, 3, 0, 1, dir);
     i = (int)(sel[0] * (mt_real)n);
     if (i > n - 1) i = n - 1;
-    lu[0] = sel[1];
-    lu[1] = lpos[0];
-    lu[2] = lpos[1];
-    bu[0] = comp[0];
-    bu[1] = dir[0];
-    bu[2] = dir[1];
+    mt__u3(lu, sel[1], lpos);
+    mt__u3(bu, comp[0], dir);
     return mt_rgb_scale(mt__estimate_direct(tc, &s->lights[i], v, lu, bu), (mt_real)n);
 }
 
@@ -150,12 +146,8 @@ mt_rgb mt__sample_all_lights(mt__thread_ctx *tc, const mt__vertex *v, int vertex
             mt__vertex_sample(tc, vertex, k, j, n, comps);
             mt__vertex_sample(tc, vertex, k + 1, j, n, lpos);
             mt__vertex_sample(tc, vertex, k + 2, j, n, dir);
-            lu[0] = comps[0];
-            lu[1] = lpos[0];
-            lu[2] = lpos[1];
-            bu[0] = comps[1];
-            bu[1] = dir[0];
-            bu[2] = dir[1];
+            mt__u3(lu, comps[0], lpos);
+            mt__u3(bu, comps[1], dir);
             Ld = mt_rgb_add(Ld, mt__estimate_direct(tc, &s->lights[i], v, lu, bu));
         }
         L = mt_rgb_add(L, mt_rgb_divs(Ld, (mt_real)n));

@@ -171,12 +171,8 @@ static mt_rgb direct_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *
         mt__vertex_sample(tc, depth, 4, 0, 1, comps);
         mt__vertex_sample(tc, depth, 5, 0, 1, r);
         mt__vertex_sample(tc, depth, 6, 0, 1, t);
-        ur[0] = comps[0];
-        ur[1] = r[0];
-        ur[2] = r[1];
-        ut[0] = comps[1];
-        ut[1] = t[0];
-        ut[2] = t[1];
+        mt__u3(ur, comps[0], r);
+        mt__u3(ut, comps[1], t);
         L = mt_rgb_add(L, specular(tc, rd, &v, MT_BSDF_REFLECTION, ur, depth));
         L = mt_rgb_add(L, specular(tc, rd, &v, MT_BSDF_TRANSMISSION, ut, depth));
     }

@@ -25,6 +25,15 @@ int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
 /* Radiance the vertex emits towards wo (its area light, one-sided). */
 mt_rgb mt__vertex_le(const mt_scene *s, const mt__vertex *v);
 
+/* (first, pair[0], pair[1]): a component choice and a 2D sample as the
+ * light and BSDF sampling routines take them. */
+static inline void mt__u3(mt_real out[3], mt_real first, const mt_real pair[2])
+{
+    out[0] = first;
+    out[1] = pair[0];
+    out[2] = pair[1];
+}
+
 /* EstimateDirect: light sampling and BSDF sampling of one light, combined with
  * the power heuristic; lu = (ucomp, u1, u2) for the light, bu for the BSDF;
  * non-specular BSDF components only. */

@@ -14,6 +14,7 @@
 #include <math.h>
 #include <string.h>
 #include "materia/render.h"
+#include "support/check.h"
 
 static inline void t__count_warning(void *ctx, const char *file, int line, const char *msg)
 {
@@ -33,6 +34,18 @@ static inline mt_scene *t_scene(const char *text, const char *dir, int *nwarn, m
     o.warn = t__count_warning;
     o.warn_ctx = nwarn;
     return mt_scene_load_string(text, "<test>", dir, &o, err);
+}
+
+/* t_scene, or NULL after a FAIL line naming the check and the error. */
+static inline mt_scene *t_scene_or_fail(const char *check, const char *text)
+{
+    mt_error err;
+    mt_scene *s = t_scene(text, NULL, NULL, &err);
+    if (!s) {
+        char buf[1024];
+        t_fail(check, "scene: %s", mt_error_format(&err, buf, sizeof buf));
+    }
+    return s;
 }
 
 /* Renders s with spp samples (0: the scene's), threads (0: all), seed; the
