@@ -56,14 +56,14 @@ void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_
         for (j = 0; j < 4; ++j) c->c2w[i][j] = (mt_real)camera_to_world->m.m[i][j];
 }
 
-static mt_vec3 to_world_vector(const mt__camera *c, mt_vec3 v)
+static inline mt_vec3 to_world_vector(const mt__camera *c, mt_vec3 v)
 {
     return mt_v3(c->c2w[0][0] * v.x + c->c2w[0][1] * v.y + c->c2w[0][2] * v.z,
                  c->c2w[1][0] * v.x + c->c2w[1][1] * v.y + c->c2w[1][2] * v.z,
                  c->c2w[2][0] * v.x + c->c2w[2][1] * v.y + c->c2w[2][2] * v.z);
 }
 
-static mt_vec3 to_world_point(const mt__camera *c, mt_vec3 p)
+static inline mt_vec3 to_world_point(const mt__camera *c, mt_vec3 p)
 {
     mt_vec3 v = to_world_vector(c, p);
     return mt_v3(v.x + c->c2w[0][3], v.y + c->c2w[1][3], v.z + c->c2w[2][3]);
