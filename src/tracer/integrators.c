@@ -45,6 +45,10 @@ void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n,
         mt__sample_2d_seeded(tc->sampler.tables, ds, index, out);
         return;
     }
+    if (!tc->rng_ready) {
+        mt_rng_seed(&tc->rng, mt__hash_combine(tc->sampler.seed, tc->index), 0);
+        tc->rng_ready = 1;
+    }
     out[0] = mt_rng_uniform(&tc->rng);
     out[1] = mt_rng_uniform(&tc->rng);
 }

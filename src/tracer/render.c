@@ -77,7 +77,7 @@ static void render_tile(render_job *job, mt__thread_ctx *tc, int t, mt__film_buf
                 mt_real u[2];
                 mt_rgb L;
                 tc->index = (uint32_t)i;
-                mt_rng_seed(&tc->rng, mt__hash_combine(tc->sampler.seed, (uint32_t)i), 0);
+                tc->rng_ready = 0;
                 mt__sample_2d_seeded(&job->tables, &image_seeds, (uint32_t)i, u);
                 cs.image_x = (mt_real)x + u[0];
                 cs.image_y = (mt_real)y + u[1];

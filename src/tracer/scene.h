@@ -65,6 +65,7 @@ typedef struct mt__thread_ctx {
     mt__seed_slot seed_cache[MT__LD_VERTICES][MT__SEED_CACHE_PAIRS];
     uint32_t index;   /* the camera sample's index in its pixel */
     mt_rng rng;       /* dimensions beyond the low-discrepancy ones */
+    int rng_ready;    /* rng seeded for this camera sample (seeded on first use) */
     long shading_failures;
     long rejected;    /* samples set to black (NaN, Inf, negative) */
     mt_error err;     /* scratch for mt_material_get_bsdf */
