@@ -13,25 +13,9 @@
 #include <string.h>
 #include "materia/imgcmp.h"
 #include "support/check.h"
+#include "support/timage.h"
 
 /* ---- helpers ---------------------------------------------------------- */
-
-static mt_image make(int w, int h, int nc, float v)
-{
-    mt_image img;
-    size_t k;
-    if (mt_image_alloc(&img, w, h, nc, NULL) != MT_OK) {
-        fprintf(stderr, "out of memory\n");
-        exit(1);
-    }
-    for (k = 0; k < (size_t)w * (size_t)h * (size_t)nc; ++k) img.data[k] = v;
-    return img;
-}
-
-static float *px(mt_image *img, int x, int y)
-{
-    return img->data + ((size_t)y * (size_t)img->width + (size_t)x) * (size_t)img->channels;
-}
 
 /* A standard normal deviate (Box-Muller; u1 in (0, 1]). */
 static double gauss(mt_rng *r)
@@ -74,19 +58,19 @@ static void test_percentile(void)
 static void hand_images(mt_image *a, mt_image *b)
 {
     int x, y;
-    *a = make(6, 5, 3, 0);
-    *b = make(6, 5, 3, 0);
+    *a = t_image_make(6, 5, 3, 0);
+    *b = t_image_make(6, 5, 3, 0);
     for (y = 0; y < 5; ++y)
         for (x = 0; x < 6; ++x) {
-            float *pa = px(a, x, y), *pb = px(b, x, y);
+            float *pa = t_image_px(a, x, y), *pb = t_image_px(b, x, y);
             pb[0] = 0, pb[1] = 1, pb[2] = 0.3f;
             pa[0] = 0, pa[1] = 1, pa[2] = 0.3f;
             if (x < 4 && y < 4) pa[2] = 0.31f;
             if (x < 4 && y == 4) pa[1] = 0.5f;
         }
-    px(a, 0, 0)[0] = 0.16f;
-    px(a, 5, 4)[0] = 0.06f;
-    px(a, 4, 0)[1] = 1.808f;
+    t_image_px(a, 0, 0)[0] = 0.16f;
+    t_image_px(a, 5, 4)[0] = 0.06f;
+    t_image_px(a, 4, 0)[1] = 1.808f;
 }
 
 static void test_noise_by_hand(void)
@@ -142,7 +126,7 @@ static void test_noise_gaussian(void)
 {
     const int w = 256, h = 256;
     const double v = 0.5, sd = 0.02, s = sd * sqrt(2.0) / 4 / (v + 0.01);
-    mt_image a = make(w, h, 3, 0), b = make(w, h, 3, 0);
+    mt_image a = t_image_make(w, h, 3, 0), b = t_image_make(w, h, 3, 0);
     mt_noise_metric m;
     mt_rng rng;
     size_t k;
@@ -169,7 +153,7 @@ static void test_noise_gaussian(void)
 
 static void test_pixel_errors(void)
 {
-    mt_image a = make(2, 1, 1, 0), b = make(2, 1, 1, 0);
+    mt_image a = t_image_make(2, 1, 1, 0), b = t_image_make(2, 1, 1, 0);
     mt_pixel_errors e;
     /* d = 0.5 over b = 0 and d = -2 over b = 3 (the first largest |d|) */
     a.data[0] = 0.5f, b.data[0] = 0;
@@ -197,8 +181,8 @@ static int fails_with(mt_status got, const mt_error *err, const char *words, con
 
 static void test_errors(void)
 {
-    mt_image a = make(8, 8, 3, 0.5f), b = make(8, 6, 3, 0.5f), y = make(8, 8, 1, 0.5f);
-    mt_image rgba = make(8, 8, 4, 0.5f), var = make(8, 8, 3, 0.01f);
+    mt_image a = t_image_make(8, 8, 3, 0.5f), b = t_image_make(8, 6, 3, 0.5f), y = t_image_make(8, 8, 1, 0.5f);
+    mt_image rgba = t_image_make(8, 8, 4, 0.5f), var = t_image_make(8, 8, 3, 0.01f);
     mt_noise_metric m;
     mt_ztest_result z;
     mt_error err;
@@ -208,17 +192,17 @@ static void test_errors(void)
                "errors: one channel against three");
     fails_with(mt_imgcmp_noise(&a, &a, 0, &m, &err), &err, "block size", "errors: block size 0");
     /* RGBA against RGB: alpha is not compared */
-    px(&rgba, 3, 3)[3] = 0;
+    t_image_px(&rgba, 3, 3)[3] = 0;
     t_check(mt_imgcmp_noise(&rgba, &a, 4, &m, &err) == MT_OK && m.max == 0,
             "errors: RGBA compares with RGB, alpha ignored", "%s", err.message);
-    px(&a, 5, 2)[1] = NAN;
+    t_image_px(&a, 5, 2)[1] = NAN;
     fails_with(mt_imgcmp_noise(&a, &rgba, 4, &m, &err), &err, "non-finite value at pixel (5, 2)",
                "errors: a NaN is named by pixel");
-    px(&a, 5, 2)[1] = 0.5f;
-    px(&var, 1, 7)[2] = -1e-6f;
+    t_image_px(&a, 5, 2)[1] = 0.5f;
+    t_image_px(&var, 1, 7)[2] = -1e-6f;
     fails_with(mt_imgcmp_ztest(&a, &var, &rgba, NULL, NULL, &z, NULL, &err), &err,
                "negative variance", "errors: a negative variance");
-    px(&var, 1, 7)[2] = 0;
+    t_image_px(&var, 1, 7)[2] = 0;
     {
         mt_ztest_options o = mt_ztest_defaults();
         o.alpha = 1;
@@ -238,7 +222,7 @@ static void test_accumulator(void)
 {
     mt_error err;
     mt_imgacc *acc = mt_imgacc_create(2, 1, 1, &err);
-    mt_image mean, var, wrong = make(3, 1, 1, 0);
+    mt_image mean, var, wrong = t_image_make(3, 1, 1, 0);
     float s;
     int i;
     if (!acc) {
@@ -283,7 +267,7 @@ static void test_accumulator(void)
  * Three channels: m = 3, threshold 1 - 0.99^(1/3) = 0.0033445. */
 static void test_ztest_by_hand(void)
 {
-    mt_image a = make(4, 4, 3, 1), b = make(4, 4, 3, 0.9f), va = make(4, 4, 3, 0.0016f), zmap;
+    mt_image a = t_image_make(4, 4, 3, 1), b = t_image_make(4, 4, 3, 0.9f), va = t_image_make(4, 4, 3, 0.0016f), zmap;
     mt_ztest_result r;
     mt_error err;
     double thr = 1 - pow(0.99, 1.0 / 3);
@@ -300,7 +284,7 @@ static void test_ztest_by_hand(void)
     t_near(r.z_threshold, 2.934161, 1e-5, "z-test by hand: |z| at the threshold");
     t_near(r.mean_rel, 0.1 / 0.91, 1e-6, "z-test by hand: mean relative difference");
     mt_image_free(&b);
-    b = make(4, 4, 3, 0.98f);
+    b = t_image_make(4, 4, 3, 0.98f);
     ok = mt_imgcmp_ztest(&a, &va, &b, NULL, NULL, &r, NULL, &err) == MT_OK;
     t_check(ok && r.pass, "z-test by hand: d = 0.02 (z = 2) passes", "min p %g", r.min_p);
     t_near(r.min_p, erfc(2 / sqrt(2.0)), 1e-5, "z-test by hand: min p = erfc(2 / sqrt 2)");
@@ -443,7 +427,7 @@ static void test_ztest_bias(void)
         for (by = 0; by < zmap.height; ++by)
             for (bx = 0; bx < zmap.width; ++bx)
                 for (c = 0; c < 3; ++c)
-                    if (fabs(px(&zmap, bx, by)[c]) >= r.z_threshold && !(bx >= 6 && by < 2))
+                    if (fabs(t_image_px(&zmap, bx, by)[c]) >= r.z_threshold && !(bx >= 6 && by < 2))
                         outside++;
         mt_image_free(&zmap);
     }
@@ -467,12 +451,12 @@ static void test_ztest_exact(void)
         t_fail("z-test exact", "render failed");
         return;
     }
-    px(&a, 1, 9)[0] = 0.25f + 1e-3f;
+    t_image_px(&a, 1, 9)[0] = 0.25f + 1e-3f;
     mt_imgcmp_ztest(&a, &va, &b, &vb, NULL, &r, NULL, NULL);
     t_check(!r.pass && r.exact_mismatch == 1,
             "z-test exact: background off by 1e-3 fails as one exact mismatch",
             "pass %d, mismatches %ld, min p %g", r.pass, r.exact_mismatch, r.min_p);
-    px(&a, 1, 9)[0] = 0.25f * (1 + 2e-6f);
+    t_image_px(&a, 1, 9)[0] = 0.25f * (1 + 2e-6f);
     mt_imgcmp_ztest(&a, &va, &b, &vb, NULL, &r, NULL, NULL);
     t_check(r.exact_mismatch == 0,
             "z-test exact: background off by float rounding (2e-6) is equal", "%ld mismatches",
@@ -491,7 +475,7 @@ static void test_ztest_exact(void)
 
 static void test_alloc_failures(void)
 {
-    mt_image a, b, va = make(6, 5, 3, 1e-4f), map;
+    mt_image a, b, va = t_image_make(6, 5, 3, 1e-4f), map;
     mt_noise_metric m;
     mt_ztest_result r;
     int n, fails = 0, ok = 1;
@@ -573,7 +557,7 @@ static void test_pbrt_renders(void)
             mt_imgcmp_noise(&img[0], &pfm, 4, &m, &err) == MT_OK) {
             t_check(m.mean == 0 && m.max == 0 && m.lum_ratio == 1,
                     "pbrt-v2 renders: matte EXR against PFM is 0", "mean %g", m.mean);
-            scaled = make(pfm.width, pfm.height, 3, 0);
+            scaled = t_image_make(pfm.width, pfm.height, 3, 0);
             for (k = 0; k < (size_t)pfm.width * pfm.height * 3; ++k)
                 scaled.data[k] = pfm.data[k] * 1.02f;
             mt_imgcmp_noise(&scaled, &pfm, 4, &m, &err);

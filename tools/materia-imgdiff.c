@@ -21,6 +21,7 @@
 #include "materia.h"
 #include "materia/image.h"
 #include "materia/imgcmp.h"
+#include "toolargs.h"
 
 static const char *prog = "materia-imgdiff";
 
@@ -43,20 +44,6 @@ static int usage(FILE *f)
             "with --fail-ztest.\n",
             prog);
     return f == stdout ? 0 : 1;
-}
-
-/* A number argument: the whole string must be a finite number in [lo, hi]. */
-static int number(const char *opt, const char *s, double lo, double hi, double *out)
-{
-    char *end;
-    double v = s ? strtod(s, &end) : 0;
-    if (!s || end == s || *end || !(v >= lo && v <= hi)) {
-        fprintf(stderr, "%s: %s needs a number between %g and %g, not \"%s\"\n", prog, opt, lo,
-                hi, s ? s : "");
-        return 0;
-    }
-    *out = v;
-    return 1;
 }
 
 /* Returns -1 to go on, else the exit status. */
@@ -86,14 +73,14 @@ static int parse(int argc, char **argv, args *a)
         else if (!strcmp(o, "--heatmap"))
             a->heatmap = argv[++i];
         else if (!strcmp(o, "--block")) {
-            if (!number(o, argv[++i], 1, 4096, &v) || v != (int)v) return 1;
+            if (!tool_number(prog, o, argv[++i], 1, 4096, 1, &v)) return 1;
             a->block = (int)v;
         } else if (!strcmp(o, "--alpha")) {
-            if (!number(o, argv[++i], 1e-12, 0.5, &a->alpha)) return 1;
+            if (!tool_number(prog, o, argv[++i], 1e-12, 0.5, 0, &a->alpha)) return 1;
         } else if (!strcmp(o, "--heatmap-max")) {
-            if (!number(o, argv[++i], 1e-30, 1e30, &a->heatmap_max)) return 1;
+            if (!tool_number(prog, o, argv[++i], 1e-30, 1e30, 0, &a->heatmap_max)) return 1;
         } else if (!strcmp(o, "--fail-above")) {
-            if (!number(o, argv[++i], 0, 1e30, &a->fail_above)) return 1;
+            if (!tool_number(prog, o, argv[++i], 0, 1e30, 0, &a->fail_above)) return 1;
         } else if (o[0] == '-' && o[1] == '-') {
             fprintf(stderr, "%s: unknown option %s\n", prog, o);
             return usage(stderr);

@@ -15,6 +15,7 @@
 #include "materia.h"
 #include "materia/image.h"
 #include "materia/sheet.h"
+#include "toolargs.h"
 
 static const char *prog = "materia-sheet";
 
@@ -27,16 +28,11 @@ static int usage(FILE *f)
     return f == stdout ? 0 : 1;
 }
 
-/* An integer option value in [lo, hi]. */
+/* An integer option's value in [lo, hi]. */
 static int integer(const char *opt, const char *s, long lo, long hi, int *out)
 {
-    char *end;
-    long v = s ? strtol(s, &end, 10) : 0;
-    if (!s || end == s || *end || v < lo || v > hi) {
-        fprintf(stderr, "%s: %s needs a whole number from %ld to %ld, not \"%s\"\n", prog, opt,
-                lo, hi, s ? s : "");
-        return 0;
-    }
+    double v;
+    if (!tool_number(prog, opt, s, (double)lo, (double)hi, 1, &v)) return 0;
     *out = (int)v;
     return 1;
 }
@@ -90,15 +86,9 @@ int main(int argc, char **argv)
             status = !integer(o, argv[++i], 0, 4096, &opt.columns);
         else if (!strcmp(o, "--font-scale") && val)
             status = !integer(o, argv[++i], 1, 16, &opt.font_scale);
-        else if (!strcmp(o, "--exposure") && val) {
-            char *end;
-            opt.exposure = strtod(argv[++i], &end);
-            if (end == argv[i] || *end) {
-                fprintf(stderr, "%s: --exposure needs a number of stops, not \"%s\"\n", prog,
-                        argv[i]);
-                status = 1;
-            }
-        } else if (o[0] == '-') {
+        else if (!strcmp(o, "--exposure") && val)
+            status = !tool_number(prog, o, argv[++i], -64, 64, 0, &opt.exposure);
+        else if (o[0] == '-') {
             fprintf(stderr, "%s: unknown option %s%s\n", prog, o, val ? "" : " (or no value)");
             status = usage(stderr);
         } else {
