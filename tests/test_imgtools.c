@@ -335,6 +335,8 @@ static void test_tools(void)
     tool("sheet: a missing image is exit 1 naming it", "materia-sheet", "-o s2.png x=missing.pfm",
          1, "err.txt", "missing.pfm: cannot open");
     tool("sheet: no -o is exit 1", "materia-sheet", "a.pfm", 1, "err.txt", "no output file");
+    tool("sheet: --help is exit 0", "materia-sheet", "--help", 0, "out.txt", "usage");
+    tool("imgdiff: --help is exit 0", "materia-imgdiff", "--help", 0, "out.txt", "usage");
 }
 
 /* The tools sit in BUILD/bin, the test in BUILD/tests; the path is made

@@ -67,6 +67,8 @@ int main(int argc, char **argv)
     const char *out = NULL;
     mt_error err;
     int i, n = 0, status = 0;
+    for (i = 1; i < argc; ++i)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return usage(stdout);
     entries = calloc((size_t)argc, sizeof *entries);
     images = calloc((size_t)argc, sizeof *images);
     labels = calloc((size_t)argc, sizeof *labels);
@@ -77,10 +79,7 @@ int main(int argc, char **argv)
     mt_error_clear(&err);
     for (i = 1; i < argc && status == 0; ++i) {
         const char *o = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
-            status = -usage(stdout);
-            break;
-        } else if (!strcmp(o, "-o") && val)
+        if (!strcmp(o, "-o") && val)
             out = argv[++i];
         else if (!strcmp(o, "--columns") && val)
             status = !integer(o, argv[++i], 0, 4096, &opt.columns);
@@ -122,5 +121,5 @@ int main(int argc, char **argv)
     free(entries);
     free(images);
     free(labels);
-    return status < 0 ? 0 : status;
+    return status;
 }
