@@ -7,8 +7,18 @@
 #include "core/alloc.h"
 #include "tracer/film.h"
 
-static int ceil_int(double v) { return (int)ceil(v); }
-static int floor_int(double v) { return (int)floor(v); }
+/* floor and ceil to int without libm calls (x86-64's baseline has no
+ * rounding instruction, so floor() is a call); |v| < 2^31 here. */
+static int floor_int(double v)
+{
+    int i = (int)v;
+    return (double)i > v ? i - 1 : i;
+}
+static int ceil_int(double v)
+{
+    int i = (int)v;
+    return (double)i < v ? i + 1 : i;
+}
 
 void mt__film_init(mt__film *f, int xres, int yres, const mt_real crop_in[4],
                    const mt__filter *filter)
