@@ -246,6 +246,62 @@ static void test_path_vs_direct(void)
     }
 }
 
+/* ---- a mesh light tested primitive by primitive or through the scene ---------------- */
+
+static const char *mesh_light_scene =
+    "LookAt 0 0 6  0 0 0  0 1 0 Camera \"perspective\" \"float fov\" [40]\n"
+    "Film \"image\" \"integer xresolution\" [16] \"integer yresolution\" [16]\n"
+    "Sampler \"lowdiscrepancy\" \"integer pixelsamples\" [64]\n"
+    "SurfaceIntegrator \"path\"\n"
+    "WorldBegin\n"
+    "AttributeBegin Material \"matte\" \"rgb Kd\" [0 0 0] AreaLightSource \"area\" \"rgb L\" [3 3 3]\n"
+    "  Translate 0.7 0.4 2.5 Shape \"trianglemesh\" %s\n"
+    "AttributeEnd\n"
+    "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n"
+    "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3]\n"
+    "  \"point P\" [-20 -20 0  20 -20 0  20 20 0  -20 20 0]\n"
+    "WorldEnd\n";
+
+/* The same 1x1 square light facing down (-z) as 2 triangles and as 32
+ * (a 4x4 grid): BSDF-sampled rays test the first's primitives one by one
+ * and find the second's through the scene; the images must agree. */
+static void test_mesh_light(void)
+{
+    char mesh[4096], text[8192];
+    mt_image a, av, b, bv;
+    double ma, sa, mb, sb;
+    int i, j, n = 0, len;
+    len = snprintf(mesh, sizeof mesh, "\"integer indices\" [0 2 1 0 3 2] "
+                   "\"point P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]");
+    snprintf(text, sizeof text, mesh_light_scene, mesh);
+    if (!render("mesh light", text, 0, &a, &av)) return;
+    len = snprintf(mesh, sizeof mesh, "\"integer indices\" [");
+    for (j = 0; j < 4; ++j)
+        for (i = 0; i < 4; ++i) {
+            int v = j * 5 + i;
+            len += snprintf(mesh + len, sizeof mesh - (size_t)len, " %d %d %d %d %d %d", v, v + 6, v + 1,
+                            v, v + 5, v + 6);
+            n += 2;
+        }
+    len += snprintf(mesh + len, sizeof mesh - (size_t)len, "] \"point P\" [");
+    for (j = 0; j < 5; ++j)
+        for (i = 0; i < 5; ++i)
+            len += snprintf(mesh + len, sizeof mesh - (size_t)len, " %g %g 0", -0.5 + 0.25 * i, -0.5 + 0.25 * j);
+    snprintf(mesh + len, sizeof mesh - (size_t)len, "]");
+    snprintf(text, sizeof text, mesh_light_scene, mesh);
+    if (render("mesh light", text, 0, &b, &bv)) {
+        t_region_stats(&a, &av, 0, 0, 16, 16, 1, &ma, &sa);
+        t_region_stats(&b, &bv, 0, 0, 16, 16, 1, &mb, &sb);
+        t_check(n == 32 && ma > 0.01 && fabs(ma - mb) <= 5 * sqrt(sa * sa + sb * sb) + 1e-5 * mb,
+                "an area light of 2 and of 32 triangles (direct tests and scene queries) agree",
+                "%d triangles: %.6g +- %.2g against %.6g +- %.2g", n, mb, sb, ma, sa);
+        mt_image_free(&b);
+        mt_image_free(&bv);
+    }
+    mt_image_free(&a);
+    mt_image_free(&av);
+}
+
 /* ---- determinism and allocation --------------------------------------------------- */
 
 static const char *busy_scene =
@@ -424,6 +480,7 @@ int main(void)
     test_point_light();
     test_env_spheres();
     test_path_vs_direct();
+    test_mesh_light();
     test_threads_identical();
     test_no_allocation_per_sample();
     test_broken_scenes();
