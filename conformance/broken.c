@@ -138,11 +138,11 @@ static mt_status b_wrongf(const cf_subject *s, mt_arena *a, mt_mode m, mt_bsdf *
 }
 
 static const cf_subject broken[] = {
-    {"BROKEN pdf off by 5% (blinn e=10)", "broken", b_pdf5, {10}, CF_BROKEN | CF_FURNACE_LE1, 0, 10},
-    {"BROKEN pdf off by 5% (blinn e=0.5)", "broken", b_pdf5, {0.5}, CF_BROKEN | CF_FURNACE_LE1, 0, 0.5},
-    {"BROKEN sampling ignores roughness (e=100 by 10)", "broken", b_rough, {100, 10}, CF_BROKEN | CF_FURNACE_LE1, 0, 100},
-    {"BROKEN sampling e=10 by 12 (sensitivity, informative)", "broken", b_rough, {10, 12, 0, 0, 0, 0, 0, 1}, CF_BROKEN | CF_FURNACE_LE1, 0, 12},
-    {"BROKEN wrong Fresnel side (glass 1.5)", "broken", b_wrongf, {1.5}, CF_BROKEN | CF_FURNACE_EXACT | CF_NO_CHI2 | CF_TWO_SIDED, 1, 0},
+    {"BROKEN pdf off by 5% (blinn e=10)", "broken", b_pdf5, {10}, CF_BROKEN | CF_FURNACE_LE1, 0, 10, NULL},
+    {"BROKEN pdf off by 5% (blinn e=0.5)", "broken", b_pdf5, {0.5}, CF_BROKEN | CF_FURNACE_LE1, 0, 0.5, NULL},
+    {"BROKEN sampling ignores roughness (e=100 by 10)", "broken", b_rough, {100, 10}, CF_BROKEN | CF_FURNACE_LE1, 0, 100, NULL},
+    {"BROKEN sampling e=10 by 12 (sensitivity, informative)", "broken", b_rough, {10, 12, 0, 0, 0, 0, 0, 1}, CF_BROKEN | CF_FURNACE_LE1, 0, 12, NULL},
+    {"BROKEN wrong Fresnel side (glass 1.5)", "broken", b_wrongf, {1.5}, CF_BROKEN | CF_FURNACE_EXACT | CF_NO_CHI2 | CF_TWO_SIDED, 1, 0, NULL},
 };
 
 const cf_subject *cf_broken_subjects(int *count)

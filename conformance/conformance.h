@@ -19,7 +19,9 @@ enum {
     CF_BROKEN = 1 << 2,        /* a deliberately wrong variant: must be caught */
     CF_NO_CHI2 = 1 << 3,       /* only delta lobes: no density to test */
     CF_TWO_SIDED = 1 << 4,     /* test wo below the surface too */
-    CF_FURNACE_LE = 1 << 5     /* rho <= expect_rho (a documented bound) */
+    CF_FURNACE_LE = 1 << 5,    /* rho <= expect_rho (a documented bound) */
+    CF_SHADING_GAP = 1 << 6    /* shading normal != geometric normal: f may be > 0 where
+                                  the pdf is 0 (reported, not an error) */
 };
 
 struct cf_subject {
@@ -30,9 +32,15 @@ struct cf_subject {
     unsigned flags;
     double expect_rho;   /* for CF_FURNACE_EXACT / CF_FURNACE_LE */
     double lobe_exponent; /* sharpness, for float-noise allowances (0: smooth) */
+    const char *scene;    /* materials: pbrt-v2 statements ending in a Material */
 };
 
 const cf_subject *cf_subjects(int *count);
+/* Every material over a grid of its parameters, built from statements. */
+const cf_subject *cf_material_subjects(int *count);
+/* Builds s->scene's material at the default shading point (p[0], p[1], p[2]
+ * non-zero: the geometric normal, else +z). */
+mt_status cf_build_material(const cf_subject *s, mt_arena *a, mt_mode mode, mt_bsdf **out, mt_error *err);
 const cf_subject *cf_broken_subjects(int *count);
 
 /* ---- statistics ---------------------------------------------------------- */
@@ -98,6 +106,7 @@ mt_status cf_extremes(const cf_subject *s, mt_mode mode, cf_result *res, mt_erro
 
 /* Checks that are not per subject. */
 void cf_light_leak(cf_rows *rows);
+void cf_material_leak(cf_rows *rows);
 void cf_distribution_normalization(cf_rows *rows);
 void cf_furnace_table(cf_rows *rows);
 void cf_extreme_grid(cf_rows *rows);

@@ -287,7 +287,7 @@ static void texture_values(const char *tool, const char *tmp)
     }
     fgets(line, sizeof line, fo);
     for (c = 0; c < nid; ++c) {
-        int nrow = 0, bad = 0, shown = 0;
+        int nrow = 0, bad = 0, shown = 0, nan_rows = 0;
         char name[128];
         fgets(line, sizeof line, fo); /* AttributeBegin */
         fgets(line, sizeof line, fo); /* statements */
@@ -305,6 +305,18 @@ static void texture_values(const char *tool, const char *tmp)
             nrow++;
             ng = sscanf(line, "%lf %lf %lf", &got[0], &got[1], &got[2]);
             if (ng != (is_float[c] ? 1 : 3)) ok = 0;
+            if (ok && isnan(v[15])) {
+                /* pbrt-v2 answered NaN: one-sided footprints crossing a check
+                 * edge (erratum checker-one-sided); materia's answer must be
+                 * finite, and the row is listed, not compared */
+                nan_rows++;
+                line[strcspn(line, "\n")] = 0;
+                printf("  %s row %d: pbrt-v2 NaN (erratum checker-one-sided), materia %s\n", ids[c], nrow, line);
+                for (k = 0; k < ng; ++k)
+                    if (!isfinite(got[k])) ok = 0;
+                if (!ok) bad++;
+                continue;
+            }
             for (k = 0; ok && k < ng; ++k)
                 if (!close_rel(got[k], v[15 + k], 1e-4)) ok = 0;
             if (!ok) {
@@ -318,6 +330,8 @@ static void texture_values(const char *tool, const char *tmp)
         fgets(line, sizeof line, fo); /* AttributeEnd */
         snprintf(name, sizeof name, "pbrt-v2 texture values %.63s (materia-query)", ids[c]);
         verdict(name, nrow, bad, 108);
+        if (nan_rows)
+            t_xfail(name, "%d rows where pbrt-v2 returns NaN (erratum checker-one-sided) answered finite", nan_rows);
     }
     fclose(fo);
     free(rows);

@@ -36,6 +36,7 @@ typedef unsigned mt_mode;
 #define MT_FIX_MAPPING_3D          (1u << 18) /* 3D mapping applies the transform backwards */
 #define MT_FIX_CHECKER_ONE_SIDED   (1u << 19) /* closed-form checkerboard 0/0 */
 #define MT_FIX_CYLINDRICAL_AXIS    (1u << 20) /* cylindrical mapping NaN on its axis */
+#define MT_FIX_DOTS_INSIDE         (1u << 21) /* dots: "inside" drawn outside the dots */
 
 /* Options outside both modes. */
 #define MT_OPT_RADIANCE_TRANSMISSION (1u << 28) /* scale specular transmission by (eta_t/eta_i)^2 */
@@ -44,9 +45,9 @@ typedef unsigned mt_mode;
 #define MT_MODE_CORRECTED                                                                   \
     (MT_FIX_SCALED_PDF | MT_FIX_MICROFACET_FRESNEL | MT_FIX_RHO_LOCAL |                     \
      MT_FIX_ANISOTROPIC_NORMAL | MT_FIX_GLOSSY_SAMPLE_PDF | MT_FIX_TANGENT_PLANE |          \
-     MT_FIX_BSDF_FRAME | MT_FIX_MEASURED_SYMMETRY | MT_FIX_DIELECTRIC_SIDE | MT_FIX_UBER_OPACITY |                     \
-     MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX |                 \
-     MT_FIX_MAPPING_3D | MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS)
+     MT_FIX_BSDF_FRAME | MT_FIX_MEASURED_SYMMETRY | MT_FIX_DIELECTRIC_SIDE |                \
+     MT_FIX_UBER_OPACITY | MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX | MT_FIX_MAPPING_3D | \
+     MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS | MT_FIX_DOTS_INSIDE)
 
 /* One entry of the errata catalog. bit is 0 for entries that materia fixes in
  * both modes (pbrt-v2 would produce NaN, Inf or memory corruption there). */

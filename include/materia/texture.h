@@ -26,6 +26,12 @@
 typedef struct mt_texture mt_texture;
 typedef struct mt_texture_table mt_texture_table;
 
+/* Evaluation reads dg's p, u, v and screen-space differentials, allocates
+ * nothing and may run in any number of threads at once; the result is finite
+ * for finite input. A spectrum texture read as a float gives its luminance
+ * (mt_rgb_y, what pbrt-v2's float image maps store); a float texture read as
+ * RGB is gray. Reference counts are atomic; a texture holds references to
+ * the textures it is made of. */
 MT_API mt_real mt_texture_eval_float(const mt_texture *t, const mt_diffgeom *dg);
 MT_API mt_rgb mt_texture_eval_rgb(const mt_texture *t, const mt_diffgeom *dg);
 MT_API int mt_texture_is_float(const mt_texture *t);
@@ -88,8 +94,12 @@ MT_API mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_r
 
 /* Creates a texture of pbrt-v2 class class_name ("constant", "checkerboard",
  * ...), float or spectrum, declared under the transform tex2world (pbrt-v2's
- * current transform at the Texture statement). NULL with err filled for an
- * unknown class, a class without that variant, or a bad parameter. */
+ * current transform at the Texture statement; NULL for the identity). NULL
+ * with err filled for an unknown class, a class without that variant, or a
+ * bad parameter: an unknown "mapping", "aamode", "wrap" or "dimension", a
+ * missing or unreadable image, octaves outside [0, 128], ... (pbrt-v2 warns
+ * and substitutes a default for some of these). tp->mode selects pbrt-v2's
+ * behaviour or the corrections (MT_FIX_MAPPING_3D, MT_FIX_DOTS_INSIDE, ...). */
 MT_API mt_texture *mt_texture_create(const char *class_name, int is_float,
                                      const mt_transform *tex2world, const mt_texparams *tp,
                                      mt_error *err);

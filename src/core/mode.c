@@ -79,15 +79,25 @@ static const mt_erratum errata[] = {
      "the inverse (world to texture space), as for the 2D mappings"},
     {"checker-one-sided", MT_FIX_CHECKER_ONE_SIDED, "texture",
      "checkerboard.h Checkerboard2DTexture (closedform)",
-     "the box-filtered integral divides by the filter widths: one width 0 with the footprint "
-     "crossing an edge in the other direction gives 0/0; materia returns the unfiltered "
-     "value there in pbrt-v2 mode",
-     "point-sample along the zero-width axis, integrate along the other"},
+     "the box filter's odd-check fraction along each axis is (BUMPINT(c + d) - BUMPINT(c - d)) "
+     "/ 2d: with one width d = 0 and the footprint crossing an edge along the other axis it is "
+     "0/0 (NaN), and with a width so small that c +- d rounds to c it is 0 instead of the "
+     "check's parity (the wrong check's texture); materia returns, where pbrt-v2 gives NaN, "
+     "the limit of its formula as that width tends to 0 (the zero-width axis point-sampled)",
+     "an axis along which the footprint stays inside one check is point-sampled (its exact "
+     "box average), the other integrated"},
     {"cylindrical-axis", MT_FIX_CYLINDRICAL_AXIS, "texture",
-     "texture.cpp CylindricalMapping2D::Map",
-     "normalizes the point's direction from the axis; on the axis it is the zero vector and "
-     "the result is NaN; materia returns u = 0 there in pbrt-v2 mode",
-     "phi of the zero vector defined as 0 (u = 0.5 + atan2(0, 0)/2pi), v = z"},
+     "texture.h CylindricalMapping2D::cylinder",
+     "normalizes the point's texture-space position (not its offset from the axis): the "
+     "origin gives 0/0 and NaN (both modes: the zero vector is kept, u = 0.5 + "
+     "atan2(0, 0)/2pi, v = 0); elsewhere on the axis u = (pi + atan2(+-0, +-0))/2pi is 0, "
+     "0.5 or 1 by the signs of the zeros",
+     "phi = 0 wherever x = y = 0: u = 0.5 on the whole axis"},
+    {"dots-inside", MT_FIX_DOTS_INSIDE, "texture", "dots.h DotsTexture, dots.cpp",
+     "the constructor takes (outsideDot, insideDot) but the creators pass the \"inside\" "
+     "parameter first: \"inside\" is drawn around the dots and \"outside\" on them (the "
+     "reference values show it)",
+     "\"inside\" on the dots, \"outside\" around them"},
     {"mix-overflow", 0, "material", "mixmat.cpp MixMaterial::GetBSDF",
      "a mix whose two materials have more than 8 BxDFs between them writes past the BSDF's "
      "array (its Assert is compiled out in release builds)",
@@ -105,6 +115,18 @@ static const mt_erratum errata[] = {
     {"zero-dpdu", 0, "bsdf", "reflection.cpp BSDF::BSDF",
      "normalize(dpdu) with dpdu = 0 (a sphere's poles) is NaN and poisons the frame",
      "a frame from the shading normal alone (CoordinateSystem) in both modes"},
+    {"spherical-origin", 0, "texture", "texture.cpp SphericalMapping2D::sphere",
+     "normalizes the texture-space position: NaN at the origin",
+     "the zero vector is kept (u = acos(0)/pi = 0.5, v = 0) in both modes"},
+    {"noise-range", 0, "texture", "texture.cpp Noise, FBm, Turbulence",
+     "Floor2Int overflows for coordinates beyond 2^31 (garbage lattice cells, Inf weights); "
+     "a footprint whose squared length overflows gives -inf octaves and an infinite "
+     "Turbulence",
+     "lattice cells from an exact floor mod 256; the footprint's octave count at the largest "
+     "finite length (both modes; identical to pbrt-v2 wherever it is finite)"},
+    {"bump-degenerate", 0, "material", "material.cpp Material::Bump",
+     "normalizes Cross(dpdu', dpdv') even when the bumped tangents are parallel (NaN normal)",
+     "the unbumped shading geometry is kept where the bumped frame is degenerate (both modes)"},
 };
 
 const mt_erratum *mt_errata(int *count)

@@ -1,0 +1,42 @@
+/* pbrt-v2 ConstantTexture (textures/constant.h): the same value everywhere. */
+#include "textures/tex.h"
+
+typedef struct constant {
+    mt_texture base;
+    mt_rgb value; /* c[0] for the float variant */
+} constant;
+
+static mt_real constant_float(const mt_texture *t, const mt_diffgeom *dg)
+{
+    (void)dg;
+    return ((const constant *)t)->value.c[0];
+}
+
+static mt_rgb constant_rgb(const mt_texture *t, const mt_diffgeom *dg)
+{
+    (void)dg;
+    return ((const constant *)t)->value;
+}
+
+static const mt_texture_ops constant_ops = {"constant", constant_float, constant_rgb, NULL};
+
+mt_texture *mt__tex_constant(int is_float, mt_rgb v, mt_mode mode, mt_error *err)
+{
+    constant *c;
+    if (is_float) v = mt_rgb_gray(v.c[0]);
+    if (!mt__tex_check_rgb(v, "value", "constant", err)) return NULL;
+    c = mt__texture_alloc(sizeof *c, &constant_ops, is_float, mode, err);
+    if (!c) return NULL;
+    c->value = v;
+    return &c->base;
+}
+
+mt_texture *mt_texture_constant_float(mt_real v, mt_error *err)
+{
+    return mt__tex_constant(1, mt_rgb_gray(v), MT_MODE_PBRT_V2, err);
+}
+
+mt_texture *mt_texture_constant_rgb(mt_rgb v, mt_error *err)
+{
+    return mt__tex_constant(0, v, MT_MODE_PBRT_V2, err);
+}

@@ -1,0 +1,41 @@
+/* pbrt-v2 MixTexture (textures/mix.h): (1 - amount) tex1 + amount tex2, the
+ * amount a float texture. */
+#include "textures/tex.h"
+
+typedef struct mix {
+    mt__pair_tex pair;
+    mt_texture *amount;
+} mix;
+
+static mt_real mix_float(const mt_texture *t, const mt_diffgeom *dg)
+{
+    const mix *m = (const mix *)t;
+    mt_real a = mt__tex_f(m->pair.tex1, dg), b = mt__tex_f(m->pair.tex2, dg);
+    return mt__tex_blend(mt__tex_f(m->amount, dg), a, b);
+}
+
+static mt_rgb mix_rgb(const mt_texture *t, const mt_diffgeom *dg)
+{
+    const mix *m = (const mix *)t;
+    mt_rgb a = mt__tex_rgb(m->pair.tex1, dg), b = mt__tex_rgb(m->pair.tex2, dg);
+    return mt__tex_blend_rgb(mt__tex_f(m->amount, dg), a, b);
+}
+
+static void mix_finalize(mt_texture *t)
+{
+    mt__pair_finalize(t);
+    mt_texture_release(((mix *)t)->amount);
+}
+
+static const mt_texture_ops mix_ops = {"mix", mix_float, mix_rgb, mix_finalize};
+
+mt_texture *mt__tex_mix(int is_float, mt_texture *tex1, mt_texture *tex2, mt_texture *amount,
+                        mt_mode mode, mt_error *err)
+{
+    mix *m;
+    if (!mt__tex_check_child(amount, 1, "amount", "mix", err)) return NULL;
+    m = mt__pair_alloc(sizeof *m, &mix_ops, is_float, tex1, "tex1", tex2, "tex2", mode, err);
+    if (!m) return NULL;
+    m->amount = mt_texture_retain(amount);
+    return &m->pair.base;
+}
