@@ -648,11 +648,15 @@ static void test_broken_merl(void)
     expect_error("MERL error: infinite value",
                  write_merl("broken/inf.binary", 180, 90, 90, 1458000 + 400, 1458000 + 361, INFINITY, 0),
                  "green value of entry 361 (theta_h 0, theta_d 2, phi_d 1) is inf", 0);
-    expect_error("MERL error: trailing data", write_merl("broken/trail.binary", 90, 90, 180, all, none, 0, 4),
-                 "4 bytes of trailing data after the 4374000 values", 0);
+    snprintf(path, sizeof path, "%s", write_merl("broken/trail.binary", 90, 90, 180, all, none, 0, 4));
+    expect_error("MERL error: trailing data", path, "4 bytes of trailing data after the 4374000 values", 0);
+    remove(path); /* 35 MB */
     {
         mt_error err;
-        mt_measured *m = mt_measured_load(write_merl("broken/neg-values.binary", 90, 90, 180, all, 7, -1, 0), &err);
+        mt_measured *m;
+        snprintf(path, sizeof path, "%s", write_merl("broken/neg-values.binary", 90, 90, 180, all, 7, -1, 0));
+        m = mt_measured_load(path, &err);
+        remove(path);
         const mt_real *t = m ? mt_measured_table(m) : NULL;
         const float s0 = 1.f / 1500.f, s1 = 1.15f / 1500.f, s2 = 1.66f / 1500.f; /* pbrt-v2's floats */
         t_check(t && t[3 * 7] == 0 && t[3 * 7 + 1] == (mt_real)(0.5 * (double)s1) &&
@@ -808,6 +812,35 @@ static void test_merl_roundtrip(mt_arena *a)
     free(again);
 }
 
+/* Every allocation of a load made to fail in turn: a clean NOMEM error,
+ * nothing cached, nothing leaked (the sanitizer build checks the last). */
+static void test_alloc_failures(const char *path, const char *label)
+{
+    long n;
+    int clean = 1, done = 0;
+    char name[128];
+    mt_measured_cache_clear();
+    for (n = 0; n < 200 && !done; ++n) {
+        mt_error err;
+        mt_measured *m;
+        mt_error_clear(&err);
+        mt_alloc_fail_after(n);
+        m = mt_measured_load(path, &err);
+        mt_alloc_fail_after(-1);
+        if (m) {
+            done = 1;
+            mt_measured_release(m);
+        } else if (err.status != MT_ERR_NOMEM || mt_measured_cache_size() != 0) {
+            clean = 0;
+            printf("  allocation %ld failed: %s\n", n, err.message);
+        }
+        mt_measured_cache_clear();
+    }
+    remove(path);
+    snprintf(name, sizeof name, "%s: every allocation failure reported as out of memory", label);
+    t_check(clean && done, name, "%s", done ? "another error, or something cached" : "never loaded");
+}
+
 int main(void)
 {
     mt_arena *a = mt_arena_create(0);
@@ -819,6 +852,10 @@ int main(void)
     if (t_tmpdir_create("measured")) {
         test_broken_brdf();
         test_broken_merl();
+        test_alloc_failures(write_text("alloc.brdf", "2\n500 600\n0.1 0 0.2 0 0.5 0.5\n0.3 1 0.2 2 0.5 0.6\n"
+                                       "0.5 0 0.4 3 0.1 0.2\n"), ".brdf load");
+        test_alloc_failures(write_merl("alloc.binary", 90, 90, 180, 3 * (size_t)MT_MERL_SAMPLES, (size_t)-1, 0, 0),
+                            "MERL load");
         test_merl_roundtrip(a);
         t_tmpdir_remove();
     } else {
