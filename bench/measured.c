@@ -10,30 +10,17 @@
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 #include "materia.h"
 #include "materia/measured.h"
 #include "support/check.h"
 #include "support/tfiles.h"
+#include "support/timing.h"
 
 #define N 4096
 #define REPS 7
 
 static mt_vec3 wo_[N], wi_[N];
 static volatile double sink;
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-static int cmp(const void *x, const void *y)
-{
-    double a = *(const double *)x, b = *(const double *)y;
-    return a < b ? -1 : a > b;
-}
 
 static void directions(int upper)
 {
@@ -55,14 +42,13 @@ static double time_f(const mt_bxdf *b, int loops)
     double t[REPS];
     int r, i, l;
     for (r = 0; r < REPS; ++r) {
-        double s = 0, t0 = now();
+        double s = 0, t0 = t_now();
         for (l = 0; l < loops; ++l)
             for (i = 0; i < N; ++i) s += mt_bxdf_f(b, wo_[i], wi_[i]).c[1];
-        t[r] = (now() - t0) / ((double)loops * N) * 1e9;
+        t[r] = (t_now() - t0) / ((double)loops * N) * 1e9;
         sink += s;
     }
-    qsort(t, REPS, sizeof t[0], cmp);
-    return t[REPS / 2];
+    return t_median(t, REPS);
 }
 
 /* 1439 samples spread as the Cornell files spread theirs. */
@@ -109,20 +95,20 @@ int main(void)
     }
     if (shared) {
         snprintf(path, sizeof path, "%s/reference/scenes/brdfs/mystique.brdf", shared);
-        t0 = now();
+        t0 = t_now();
         irr = mt_measured_load(path, &err);
-        t_brdf = now() - t0;
+        t_brdf = t_now() - t0;
     } else {
         irr = synthetic(&err);
     }
     snprintf(path, sizeof path, "%s/plastic.binary", dir);
-    t0 = now();
+    t0 = t_now();
     if (irr && mt_merl_tabulate(pl, MT_MERL_AT_CORNER, values, &err) == MT_OK) {
-        t_tab = now() - t0;
+        t_tab = t_now() - t0;
         if (mt_merl_write(path, values, &err) == MT_OK) {
-            t0 = now();
+            t0 = t_now();
             merl = mt_measured_load(path, &err);
-            t_read = now() - t0;
+            t_read = t_now() - t0;
         }
     }
     remove(path);
