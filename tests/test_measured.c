@@ -723,6 +723,49 @@ static mt_measured *merl_roundtrip(mt_arena *a, mt_bsdf *truth, mt_merl_at at, c
     return m;
 }
 
+/* The creators from memory, the kinds, and their errors. */
+static void test_api(mt_arena *a, const mt_measured *m)
+{
+    size_t n = 3 * (size_t)MT_MERL_SAMPLES;
+    mt_real *copy = m ? malloc(n * sizeof *copy) : NULL;
+    mt_measured *h = NULL, *bad;
+    mt_error err;
+    mt_vec3 w = mt_v3(0, 0, 1), nan3 = mt_v3(NAN, 0, 1);
+    mt_rgb one = mt_rgb_gray(1);
+    mt_bxdf *x, *y;
+    int i, same = 1;
+    if (!copy) {
+        t_fail("measured API", "no table");
+        return;
+    }
+    memcpy(copy, mt_measured_table(m), n * sizeof *copy);
+    h = mt_measured_halfangle_create(copy, &err);
+    x = h ? mt_regular_halfangle_brdf_create(a, M, h, &err) : NULL;
+    y = mt_regular_halfangle_brdf_create(a, M, m, &err);
+    for (i = 0; x && y && i < 64; ++i) {
+        mt_vec3 wo = mt_v3(0.1f * (i % 8), 0.05f * (i / 8), 0.9f), wi = mt_v3(-0.3f, 0.02f * i, 0.7f);
+        same &= mt_rgb_equal(mt_bxdf_f(x, wo, wi), mt_bxdf_f(y, wo, wi));
+    }
+    t_check(x && same && mt_measured_kind_of(h) == MT_MEASURED_HALFANGLE && mt_measured_count(h) == MT_MERL_SAMPLES &&
+                !mt_measured_sample(h, 0, NULL, NULL),
+            "measured API: a half-angle table from memory is the file's BRDF", "%s", h ? "differs" : err.message);
+    copy[3 * 1000 + 2] = -1;
+    bad = mt_measured_halfangle_create(copy, &err);
+    t_check(!bad && strstr(err.message, "entry 1000 channel 2 is -1"), "measured API: a negative table entry is an error",
+            "%s", bad ? "accepted" : err.message);
+    x = mt_irregular_isotropic_brdf_create(a, M, m, &err);
+    t_check(!x && strstr(err.message, "other kind"), "measured API: a BxDF of the other kind of data is an error",
+            "%s", x ? "created" : err.message);
+    bad = mt_measured_irregular_create(&w, &w, &one, 0, &err);
+    t_check(!bad && strstr(err.message, "no samples"), "measured API: no irregular samples is an error", "%s",
+            bad ? "accepted" : err.message);
+    bad = mt_measured_irregular_create(&w, &nan3, &one, 1, &err);
+    t_check(!bad && strstr(err.message, "sample 0 has a value that is not finite"),
+            "measured API: a NaN direction is an error", "%s", bad ? "accepted" : err.message);
+    mt_measured_release(h);
+    free(copy);
+}
+
 static void test_merl_roundtrip(mt_arena *a)
 {
     double *values = malloc(3 * (size_t)MT_MERL_SAMPLES * sizeof *values);
@@ -745,6 +788,7 @@ static void test_merl_roundtrip(mt_arena *a)
     remove(path);
     strcpy(strrchr(path, '/') + 1, "plastic.binary");
     m = merl_roundtrip(a, truth, MT_MERL_AT_CORNER, path, values, again);
+    test_api(a, m);
     n = mt_measured_cache_size();
     same = mt_measured_load(path, &err);
     t_check(m && same == m && mt_measured_cache_size() == n, "cache: the same file gives the same data",
