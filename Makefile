@@ -135,14 +135,17 @@ $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(STATIC_LIB)
 # double ULPs); under the sanitizers it runs with fewer samples (--lite): the
 # point there is memory and undefined behaviour, the statistics run unsanitized.
 OTHER_PRECISION := $(if $(filter double,$(PRECISION)),float,double)
-OTHER_CONF      := build/$(OTHER_PRECISION)/bin/materia-conformance
+# the other precision with the same compiler: build/<other>, or BUILD-<other>
+# when BUILD was given (e.g. BUILD=build/clang CC=clang)
+OTHER_BUILD     := $(if $(filter build/$(PRECISION),$(BUILD)),build/$(OTHER_PRECISION),$(BUILD)-$(OTHER_PRECISION))
+OTHER_CONF      := $(OTHER_BUILD)/bin/materia-conformance
 CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
 
 check: all tests $(if $(SANITIZE),,other-conformance)
 	@CONF_ARGS="$(CONF_ARGS)" sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS)
 
 other-conformance:
-	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= $(OTHER_CONF)
+	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= BUILD=$(OTHER_BUILD) $(OTHER_CONF)
 
 # The conformance suite with far more samples and finer cells (slow).
 check-full: all tests

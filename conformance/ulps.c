@@ -45,8 +45,11 @@ static int answers(const cf_subject *s, mt_mode mode, int si, double *out)
     for (i = 0; i < NQ; ++i) {
         mt_vec3 wo = query_dir(&rng), wi = query_dir(&rng);
         mt_rgb f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
-        mt_bsdf_sample sm = mt_bsdf_sample_f(b, wo, as_float(mt_rng_uniform_d(&rng)), as_float(mt_rng_uniform_d(&rng)),
-                                             as_float(mt_rng_uniform_d(&rng)), MT_BSDF_ALL);
+        /* one variable each: the order of evaluation of function arguments is
+         * unspecified (gcc and clang differ), the queries must not be */
+        mt_real uc = as_float(mt_rng_uniform_d(&rng)), u1 = as_float(mt_rng_uniform_d(&rng)),
+                u2 = as_float(mt_rng_uniform_d(&rng));
+        mt_bsdf_sample sm = mt_bsdf_sample_f(b, wo, uc, u1, u2, MT_BSDF_ALL);
         out[n++] = f.c[0];
         out[n++] = f.c[1];
         out[n++] = f.c[2];

@@ -1,0 +1,115 @@
+/*
+ * pbrt-v2's disk (shapes/disk.cpp): height, radius, innerradius, phimax;
+ * u = phi / phimax, v = 1 - (rho - innerradius) / (radius - innerradius)
+ * (v = 1 at the inner edge). The normal is +z in object space.
+ *
+ * pbrt-v2's partial derivatives are kept as it computes them, though two
+ * are not the derivatives of its (u, v): dpdu carries an extra factor
+ * phimax / 2 pi (exact only for a full disk), and dpdv is
+ * -(x, y) / (1 - v) (radius - innerradius) / radius, exact only for
+ * innerradius = 0 (pbrt-v3 has -(x, y) (radius - innerradius) / rho). At
+ * the exact centre pbrt-v2's derivatives vanish and its normal is NaN; here
+ * they are taken 1e-5 radius off the centre, as pbrt-v2's sphere does at its
+ * poles. Sample() covers the full disk of the outer radius whatever
+ * innerradius and phimax are, as in pbrt-v2.
+ */
+#include "materia/sampling.h"
+#include "tracer/shape_impl.h"
+
+mt_status mt__disk_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
+{
+    mt_real h, r, ri, pm;
+    mt_status st;
+    if ((st = mt_params_float(ps, "height", 0, &h, err)) != MT_OK ||
+        (st = mt_params_float(ps, "radius", 1, &r, err)) != MT_OK ||
+        (st = mt_params_float(ps, "innerradius", 0, &ri, err)) != MT_OK ||
+        (st = mt_params_float(ps, "phimax", 360, &pm, err)) != MT_OK)
+        return st;
+    s->kind = MT_SHAPE_DISK;
+    s->height = h;
+    s->radius = r;
+    s->inner_radius = ri;
+    s->phi_max = mt_radians(mt_clamp(pm, 0, 360));
+    if (!(r > 0)) {
+        mt__locate_param(err, ps, "radius");
+        return mt_error_param(err, MT_ERR_INVALID, "radius", "disk radius %g is not positive",
+                              (double)r);
+    }
+    if (!(ri >= 0 && ri < r)) {
+        mt__locate_param(err, ps, "innerradius");
+        return mt_error_param(err, MT_ERR_INVALID, "innerradius",
+                              "disk innerradius %g is not in [0, radius %g)", (double)ri,
+                              (double)r);
+    }
+    if (!(s->phi_max > 0)) {
+        mt__locate_param(err, ps, "phimax");
+        return mt_error_param(err, MT_ERR_INVALID, "phimax", "disk phimax %g is not positive",
+                              (double)pm);
+    }
+    return MT_OK;
+}
+
+int mt__disk_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
+{
+    double th, d2, rad = s->radius, ri = s->inner_radius;
+    /* pbrt-v2 skips |d.z| < 1e-7 (a scale-dependent threshold); only rays
+     * exactly parallel to the plane are skipped here */
+    if (r->d[2] == 0) return 0;
+    th = (s->height - r->o[2]) / r->d[2];
+    if (!(th >= r->tmin && th <= r->tmax)) return 0;
+    p[0] = r->o[0] + th * r->d[0];
+    p[1] = r->o[1] + th * r->d[1];
+    p[2] = s->height; /* exactly on the plane (pbrt-v3) */
+    d2 = p[0] * p[0] + p[1] * p[1];
+    if (d2 > rad * rad || d2 < ri * ri) return 0;
+    if (!(p[0] == 0 && p[1] == 0) && mt__phi(p[0], p[1]) > s->phi_max) return 0;
+    *t = th;
+    return 1;
+}
+
+void mt__disk_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
+{
+    static const double zero[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
+    double rad = s->radius, ri = s->inner_radius, pm = s->phi_max;
+    double p[3], perr[3], phi, rho, one_minus_v, inv, dpdu[3], dpdv[3];
+    double d_scale = pm * 0.15915494309189533577; /* pbrt-v2: dpdu *= phiMax * INV_TWOPI */
+    mt_real u, v;
+    p[0] = ph[0];
+    p[1] = ph[1];
+    p[2] = ph[2];
+    perr[0] = mt__gamma_d(3) * fabs(p[0]);
+    perr[1] = mt__gamma_d(3) * fabs(p[1]);
+    perr[2] = 0;
+    phi = p[0] == 0 && p[1] == 0 ? 0 : mt__phi(p[0], p[1]);
+    rho = sqrt(p[0] * p[0] + p[1] * p[1]);
+    one_minus_v = (rho - ri) / (rad - ri);
+    u = (mt_real)(phi / pm);
+    v = (mt_real)(1 - one_minus_v);
+    if (p[0] == 0 && p[1] == 0) {
+        p[0] = 1e-5 * rad;
+        one_minus_v = (p[0] - ri) / (rad - ri);
+    }
+    inv = one_minus_v > 0 ? 1 / one_minus_v : 0;
+    dpdu[0] = -pm * p[1] * d_scale;
+    dpdu[1] = pm * p[0] * d_scale;
+    dpdu[2] = 0;
+    dpdv[0] = -p[0] * inv * ((rad - ri) / rad);
+    dpdv[1] = -p[1] * inv * ((rad - ri) / rad);
+    dpdv[2] = 0;
+    mt__surface_from_object(s, ph, perr, dpdu, dpdv, zero, zero, nz, u, v, sf);
+}
+
+mt_real mt__disk_area(const mt_shape *s)
+{
+    return s->phi_max * (mt_real)0.5 *
+           (s->radius * s->radius - s->inner_radius * s->inner_radius);
+}
+
+mt_vec3 mt__disk_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns)
+{
+    mt_real x, y;
+    mt_concentric_sample_disk(u1, u2, &x, &y);
+    *ns = mt_v3_normalize(mt_transform_normal(&s->o2w, mt_v3(0, 0, 1)));
+    if (s->reverse_orientation) *ns = mt_v3_neg(*ns);
+    return mt_transform_point(&s->o2w, mt_v3(x * s->radius, y * s->radius, s->height));
+}

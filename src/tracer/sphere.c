@@ -1,0 +1,171 @@
+/*
+ * pbrt-v2's sphere (shapes/sphere.cpp): radius, zmin, zmax, phimax;
+ * u = phi / phimax, v = (theta - thetamin) / (thetamax - thetamin) with
+ * theta measured from +z, so v runs from zmin (v = 0) to zmax (v = 1).
+ *
+ * The intersection is solved in double precision in object space, with the
+ * discriminant in the cancellation-free form r^2 |d|^2 - |o x d|^2 and the
+ * hit point reprojected onto the sphere (pbrt-v3 3.9.4); its error bound is
+ * gamma(5) |p| (in double). Sampling is pbrt-v2's, its limits included:
+ * Sample(u1, u2) covers the whole sphere whatever zmin, zmax, phimax are,
+ * and the cone sampling from outside uses the object-space radius with the
+ * world-space centre (a sphere under Scale is sampled with the wrong cone).
+ */
+#include "materia/frame.h"
+#include "materia/sampling.h"
+#include "tracer/shape_impl.h"
+
+mt_status mt__sphere_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
+{
+    mt_real radius, z0, z1, pm;
+    mt_status st;
+    if ((st = mt_params_float(ps, "radius", 1, &radius, err)) != MT_OK ||
+        (st = mt_params_float(ps, "zmin", -radius, &z0, err)) != MT_OK ||
+        (st = mt_params_float(ps, "zmax", radius, &z1, err)) != MT_OK ||
+        (st = mt_params_float(ps, "phimax", 360, &pm, err)) != MT_OK)
+        return st;
+    s->kind = MT_SHAPE_SPHERE;
+    if (!(radius > 0)) {
+        mt__locate_param(err, ps, "radius");
+        return mt_error_param(err, MT_ERR_INVALID, "radius", "sphere radius %g is not positive",
+                              (double)radius);
+    }
+    /* pbrt-v2 Sphere::Sphere */
+    s->radius = radius;
+    s->zmin = mt_clamp(mt_min(z0, z1), -radius, radius);
+    s->zmax = mt_clamp(mt_max(z0, z1), -radius, radius);
+    s->theta_min = mt_acos(mt_clamp(s->zmin / radius, -1, 1));
+    s->theta_max = mt_acos(mt_clamp(s->zmax / radius, -1, 1));
+    s->phi_max = mt_radians(mt_clamp(pm, 0, 360));
+    if (!(s->zmin < s->zmax)) {
+        mt__locate_param(err, ps, "zmin");
+        return mt_error_param(err, MT_ERR_INVALID, "zmin",
+                              "sphere zmin %g and zmax %g leave nothing of radius %g",
+                              (double)z0, (double)z1, (double)radius);
+    }
+    if (!(s->phi_max > 0)) {
+        mt__locate_param(err, ps, "phimax");
+        return mt_error_param(err, MT_ERR_INVALID, "phimax", "sphere phimax %g is not positive",
+                              (double)pm);
+    }
+    return MT_OK;
+}
+
+/* The point at t pulled onto the sphere, and pbrt-v2's clipping test. */
+static int sphere_point(const mt_shape *s, const mt__oray *r, double t, double p[3])
+{
+    double rad = s->radius, len, phi;
+    int i;
+    for (i = 0; i < 3; ++i) p[i] = r->o[i] + t * r->d[i];
+    len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    if (len > 0)
+        for (i = 0; i < 3; ++i) p[i] *= rad / len;
+    phi = p[0] == 0 && p[1] == 0 ? 0 : mt__phi(p[0], p[1]);
+    return !((s->zmin > -rad && p[2] < s->zmin) || (s->zmax < rad && p[2] > s->zmax) ||
+             phi > s->phi_max);
+}
+
+int mt__sphere_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
+{
+    const double *o = r->o, *d = r->d;
+    double rad = s->radius, a, b, c, cx, cy, cz, t0, t1;
+    a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+    c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - rad * rad;
+    cx = o[1] * d[2] - o[2] * d[1];
+    cy = o[2] * d[0] - o[0] * d[2];
+    cz = o[0] * d[1] - o[1] * d[0];
+    if (!mt__quadratic(a, b, c, a * rad * rad - (cx * cx + cy * cy + cz * cz), &t0, &t1))
+        return 0;
+    return mt__pick_root(s, r, t0, t1, sphere_point, t, p);
+}
+
+void mt__sphere_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
+{
+    double rad = s->radius, pm = s->phi_max, dth = (double)s->theta_max - s->theta_min;
+    double p[3], perr[3], zr, cosphi, sinphi, theta, phi;
+    double dpdu[3], dpdv[3], duu[3], duv[3], dvv[3], dndu[3], dndv[3];
+    int i;
+    /* pbrt-v2 moves a hit exactly on the z axis off it by 1e-5 r so that phi
+     * and the derivatives are defined; here only the derivatives use the
+     * moved point, p stays on the sphere. */
+    for (i = 0; i < 3; ++i) {
+        p[i] = ph[i];
+        perr[i] = mt__gamma_d(5) * fabs(ph[i]);
+    }
+    if (p[0] == 0 && p[1] == 0) p[0] = 1e-5 * rad;
+    phi = mt__phi(p[0], p[1]);
+    theta = acos(fmax(-1.0, fmin(1.0, p[2] / rad)));
+    zr = sqrt(p[0] * p[0] + p[1] * p[1]);
+    cosphi = p[0] / zr;
+    sinphi = p[1] / zr;
+    dpdu[0] = -pm * p[1];
+    dpdu[1] = pm * p[0];
+    dpdu[2] = 0;
+    dpdv[0] = dth * p[2] * cosphi;
+    dpdv[1] = dth * p[2] * sinphi;
+    dpdv[2] = dth * -rad * sin(theta);
+    duu[0] = -pm * pm * p[0];
+    duu[1] = -pm * pm * p[1];
+    duu[2] = 0;
+    duv[0] = dth * p[2] * pm * -sinphi;
+    duv[1] = dth * p[2] * pm * cosphi;
+    duv[2] = 0;
+    for (i = 0; i < 3; ++i) dvv[i] = -dth * dth * p[i];
+    mt__weingarten(dpdu, dpdv, duu, duv, dvv, dndu, dndv);
+    mt__surface_from_object(s, ph, perr, dpdu, dpdv, dndu, dndv, ph, (mt_real)(phi / pm),
+                            (mt_real)((theta - s->theta_min) / dth), sf);
+}
+
+mt_real mt__sphere_area(const mt_shape *s) { return s->phi_max * s->radius * (s->zmax - s->zmin); }
+
+mt_vec3 mt__sphere_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns)
+{
+    mt_vec3 p = mt_v3_scale(mt_uniform_sample_sphere(u1, u2), s->radius);
+    *ns = mt_v3_normalize(mt_transform_normal(&s->o2w, p));
+    if (s->reverse_orientation) *ns = mt_v3_neg(*ns);
+    return mt_transform_point(&s->o2w, p);
+}
+
+static mt_vec3 sphere_center(const mt_shape *s) { return mt_transform_point(&s->o2w, mt_v3(0, 0, 0)); }
+
+/* pbrt-v2: p counts as inside when DistanceSquared(p, centre) - r^2 < 1e-4. */
+static int sees_outside(const mt_shape *s, mt_vec3 p, mt_real *costhetamax)
+{
+    mt_vec3 c = sphere_center(s);
+    mt_real d2 = mt_v3_len2(mt_v3_sub(p, c)), r2 = s->radius * s->radius;
+    if (d2 - r2 < (mt_real)1e-4) return 0;
+    *costhetamax = mt_sqrt(mt_max(0, 1 - r2 / d2));
+    return 1;
+}
+
+mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns)
+{
+    mt_vec3 c = sphere_center(s), wc, wcx, wcy, ps;
+    mt_real costhetamax;
+    mt_ray r;
+    mt_hit hit;
+    if (!sees_outside(s, p, &costhetamax)) return mt__sphere_sample(s, u1, u2, ns);
+    wc = mt_v3_normalize(mt_v3_sub(c, p));
+    mt_coordinate_system(wc, &wcx, &wcy);
+    r = mt_ray_make(p, mt_uniform_sample_cone_frame(u1, u2, costhetamax, wcx, wcy, wc),
+                    (mt_real)1e-3, MT_RAY_TMAX);
+    /* a direction at the cone's edge may graze past: pbrt-v2 then takes the
+     * point of closest approach to the centre */
+    if (!mt_shape_intersect(s, 0, &r, &hit))
+        hit.t = mt_v3_dot(mt_v3_sub(c, p), mt_v3_normalize(r.d));
+    ps = mt_ray_at(&r, hit.t);
+    *ns = mt_v3_normalize(mt_v3_sub(ps, c));
+    if (s->reverse_orientation) *ns = mt_v3_neg(*ns);
+    return ps;
+}
+
+int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_real *pdf)
+{
+    mt_real costhetamax;
+    if (!sees_outside(s, p, &costhetamax)) return 0;
+    *pdf = mt_uniform_cone_pdf(costhetamax);
+    /* a sphere too small to subtend a representable cone: pbrt-v2's Inf */
+    if (!mt_is_finite(*pdf)) *pdf = 0;
+    return 1;
+}

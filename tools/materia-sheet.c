@@ -1,0 +1,125 @@
+/*
+ * materia-sheet: a contact sheet of images with labels (include/materia/sheet.h).
+ *
+ *   materia-sheet -o SHEET.png [--columns N] [--exposure STOPS] [--font-scale K]
+ *                 LABEL=IMAGE ... | IMAGE ...
+ *
+ * An argument without '=' is labelled with its file name without folder and
+ * extension. Values are multiplied by 2^STOPS, clamped to [0, 1] and written
+ * as sRGB (a .png; an .exr or .pfm keeps the linear values). Exit status 0
+ * when the sheet was written, 1 on an error (naming the file).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "materia.h"
+#include "materia/image.h"
+#include "materia/sheet.h"
+#include "toolargs.h"
+
+static const char *prog = "materia-sheet";
+
+static int usage(FILE *f)
+{
+    fprintf(f,
+            "usage: %s -o SHEET.png [--columns N] [--exposure STOPS] [--font-scale K]\n"
+            "       LABEL=IMAGE ... (or IMAGE: labelled with its file name)\n",
+            prog);
+    return f == stdout ? 0 : 1;
+}
+
+/* An integer option's value in [lo, hi]. */
+static int integer(const char *opt, const char *s, long lo, long hi, int *out)
+{
+    double v;
+    if (!tool_number(prog, opt, s, (double)lo, (double)hi, 1, &v)) return 0;
+    *out = (int)v;
+    return 1;
+}
+
+/* Splits "label=path" (or a bare path) into the entry's label (a new
+ * string) and returns the path. */
+static const char *split(const char *arg, char **label)
+{
+    const char *eq = strchr(arg, '='), *path = eq ? eq + 1 : arg, *base, *dot;
+    size_t n;
+    if (eq) {
+        base = arg;
+        n = (size_t)(eq - arg);
+    } else {
+        base = strrchr(arg, '/') ? strrchr(arg, '/') + 1 : arg;
+        dot = strrchr(base, '.');
+        n = dot && dot > base ? (size_t)(dot - base) : strlen(base);
+    }
+    if ((*label = malloc(n + 1)) != NULL) {
+        memcpy(*label, base, n);
+        (*label)[n] = 0;
+    }
+    return path;
+}
+
+int main(int argc, char **argv)
+{
+    mt_sheet_options opt = mt_sheet_defaults();
+    mt_sheet_entry *entries;
+    mt_image *images, sheet = {0, 0, 0, NULL};
+    char **labels;
+    const char *out = NULL;
+    mt_error err;
+    int i, n = 0, status = 0;
+    for (i = 1; i < argc; ++i)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return usage(stdout);
+    entries = calloc((size_t)argc, sizeof *entries);
+    images = calloc((size_t)argc, sizeof *images);
+    labels = calloc((size_t)argc, sizeof *labels);
+    if (!entries || !images || !labels) {
+        fprintf(stderr, "%s: out of memory\n", prog);
+        return 1;
+    }
+    mt_error_clear(&err);
+    for (i = 1; i < argc && status == 0; ++i) {
+        const char *o = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(o, "-o") && val)
+            out = argv[++i];
+        else if (!strcmp(o, "--columns") && val)
+            status = !integer(o, argv[++i], 0, 4096, &opt.columns);
+        else if (!strcmp(o, "--font-scale") && val)
+            status = !integer(o, argv[++i], 1, 16, &opt.font_scale);
+        else if (!strcmp(o, "--exposure") && val)
+            status = !tool_number(prog, o, argv[++i], -64, 64, 0, &opt.exposure);
+        else if (o[0] == '-') {
+            fprintf(stderr, "%s: unknown option %s%s\n", prog, o, val ? "" : " (or no value)");
+            status = usage(stderr);
+        } else {
+            const char *path = split(o, &labels[n]);
+            if (!labels[n] || mt_image_read(path, &images[n], &err) != MT_OK) {
+                fprintf(stderr, "%s: %s\n", prog, labels[n] ? err.message : "out of memory");
+                status = 1;
+            } else {
+                entries[n].label = labels[n];
+                entries[n].image = &images[n];
+                n++;
+            }
+        }
+    }
+    if (status == 0 && (!out || n == 0)) {
+        fprintf(stderr, "%s: %s\n", prog, !out ? "no output file (-o SHEET.png)" : "no images");
+        status = usage(stderr);
+    }
+    if (status == 0) {
+        if (mt_sheet_make(entries, n, &opt, &sheet, &err) != MT_OK ||
+            mt_image_write(out, &sheet, NULL, 0, &err) != MT_OK) {
+            fprintf(stderr, "%s: %s\n", prog, err.message);
+            status = 1;
+        }
+        mt_image_free(&sheet);
+    }
+    for (i = 0; i <= n && i < argc; ++i) {
+        mt_image_free(&images[i]);
+        free(labels[i]);
+    }
+    free(entries);
+    free(images);
+    free(labels);
+    return status;
+}
