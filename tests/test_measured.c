@@ -8,6 +8,7 @@
  * compared with itself within the piecewise-constant lookup's error.
  */
 #include <dirent.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -723,6 +724,41 @@ static mt_measured *merl_roundtrip(mt_arena *a, mt_bsdf *truth, mt_merl_at at, c
     return m;
 }
 
+typedef struct loader {
+    const char *path;
+    mt_measured *got;
+} loader;
+
+static void *load_thread(void *arg)
+{
+    loader *l = arg;
+    mt_error err;
+    l->got = mt_measured_load(l->path, &err);
+    return NULL;
+}
+
+/* Threads asking for one file at once get one object, read once. */
+static void test_cache_threads(const char *path)
+{
+    enum { T = 4 };
+    pthread_t th[T];
+    loader l[T];
+    int i, started = 0, same = 1;
+    mt_measured_cache_clear();
+    for (i = 0; i < T; ++i) {
+        l[i].path = path;
+        l[i].got = NULL;
+        if (pthread_create(&th[i], NULL, load_thread, &l[i]) == 0) started++;
+    }
+    for (i = 0; i < started; ++i) pthread_join(th[i], NULL);
+    for (i = 0; i < started; ++i) same &= l[i].got && l[i].got == l[0].got;
+    t_check(started == T && same && mt_measured_cache_size() == 1,
+            "cache: threads loading one file at once share one object", "%d threads, %s, %d cached",
+            started, same ? "same" : "different objects", mt_measured_cache_size());
+    for (i = 0; i < started; ++i) mt_measured_release(l[i].got);
+    mt_measured_cache_clear();
+}
+
 /* The creators from memory, the kinds, and their errors. */
 static void test_api(mt_arena *a, const mt_measured *m)
 {
@@ -804,6 +840,7 @@ static void test_merl_roundtrip(mt_arena *a)
     mt_measured_release(c);
     mt_measured_cache_clear();
     t_check(mt_measured_cache_size() == 0, "cache: empty after clearing", "%d entries", mt_measured_cache_size());
+    test_cache_threads(path);
     remove(path);
     /* a write that fails after the temporary file was made (renaming it
      * over a directory) removes it */
