@@ -9,8 +9,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 #include "materia.h"
+#include "support/timing.h"
 
 #define N 4096
 #define REPS 7
@@ -69,19 +69,6 @@ static mt_status substrate(mt_arena *a, mt_bsdf **out, mt_error *err)
     ONE(mt_fresnelblend_create(a, M, mt_rgb_gray(0.5f), mt_rgb_gray(0.5f), mt_anisotropic(10, 10), err));
 }
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-static int cmp(const void *x, const void *y)
-{
-    double a = *(const double *)x, b = *(const double *)y;
-    return a < b ? -1 : a > b;
-}
-
 static mt_vec3 wo_[N], wi_[N];
 static mt_real u_[N][3];
 static volatile double sink;
@@ -92,7 +79,7 @@ static double time_op(const mt_bsdf *b, int op)
     double t[REPS];
     int r, i, loops = 32;
     for (r = 0; r < REPS; ++r) {
-        double s = 0, t0 = now();
+        double s = 0, t0 = t_now();
         int l;
         for (l = 0; l < loops; ++l)
             for (i = 0; i < N; ++i) {
@@ -105,11 +92,10 @@ static double time_op(const mt_bsdf *b, int op)
                     s += mt_bsdf_pdf(b, wo_[i], wi_[i], MT_BSDF_ALL);
                 }
             }
-        t[r] = (now() - t0) / ((double)loops * N) * 1e9;
+        t[r] = (t_now() - t0) / ((double)loops * N) * 1e9;
         sink += s;
     }
-    qsort(t, REPS, sizeof t[0], cmp);
-    return t[REPS / 2];
+    return t_median(t, REPS);
 }
 
 int main(void)

@@ -180,16 +180,18 @@ static mt_measured *samples(const char *path, const numbers *nb, int nwl, mt_err
     mt_real *pts;
     mt_rgb *vals;
     double *lambda, *spec;
-    if (rest == 0 || rest % per != 0) {
-        int from = 1 + nwl + n * per;
-        return rest == 0
-            ? (mt__fail_at(err, MT_ERR_FORMAT, path, nb->line[nb->n - 1], 0,
-                           "measured BRDF file has no samples after its %d wavelengths", nwl), NULL)
-            : (mt__fail_at(err, MT_ERR_FORMAT, path, nb->line[from], 0,
-                           "measured BRDF file is truncated or has extra numbers: expected a "
-                           "multiple of %d values after the wavelengths (4 angles and %d spectral "
-                           "values per sample), found %d: %d whole samples and %d values from "
-                           "this line on", per, nwl, rest, n, rest - n * per), NULL);
+    if (rest == 0) {
+        mt__fail_at(err, MT_ERR_FORMAT, path, nb->line[nb->n - 1], 0,
+                    "measured BRDF file has no samples after its %d wavelengths", nwl);
+        return NULL;
+    }
+    if (rest % per != 0) {
+        mt__fail_at(err, MT_ERR_FORMAT, path, nb->line[1 + nwl + n * per], 0,
+                    "measured BRDF file is truncated or has extra numbers: expected a multiple "
+                    "of %d values after the wavelengths (4 angles and %d spectral values per "
+                    "sample), found %d: %d whole samples and %d values from this line on", per,
+                    nwl, rest, n, rest - n * per);
+        return NULL;
     }
     pts = mt__malloc((size_t)n * 3 * sizeof *pts);
     vals = mt__malloc((size_t)n * sizeof *vals);

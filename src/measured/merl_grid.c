@@ -1,36 +1,33 @@
 /*
- * MERL tables of any BSDF: the direction pair of each bin of pbrt-v2's
+ * MERL tables of any BSDF: the direction pair at a position of pbrt-v2's
  * half-angle table, and the file values that reproduce a BSDF's reflection
  * there.
  *
- * The grid is the MERL database's (and the index arithmetic of pbrt-v2's
- * RegularHalfangleBRDF::f read backwards): bin (ith, itd, ipd) covers
- * sqrt(theta_h / (pi/2)) in [ith, ith + 1) / 90, theta_d in
- * [itd, itd + 1) pi / 180 and phi_d in [ipd, ipd + 1) pi / 180; its entry is
- * the value at the bin's lower corner, where MERL's measurements sit. A
- * lookup is therefore piecewise constant, exact at the corners.
+ * The parameterisation is MERL's, read backwards from the index arithmetic
+ * of pbrt-v2's RegularHalfangleBRDF::f: sqrt(theta_h / (pi/2)), theta_d and
+ * phi_d in bins of 1/90, pi/180 and pi/180. A pair with phi_h = 0 stands for
+ * all phi_h (the table is isotropic), and the difference vector is taken in
+ * pbrt-v2's half-angle frame (whx = (cos theta_h, 0, -sin theta_h), why = y).
  */
-#include "materia/measured.h"
 #include "measured/measured_impl.h"
 
-void mt_merl_grid_directions(int ith, int itd, int ipd, mt_vec3 *wo, mt_vec3 *wi)
+void mt_merl_directions(double uh, double ud, double up, mt_vec3 *wo, mt_vec3 *wi)
 {
     const double half_pi = 1.57079632679489661923;
-    double s = (double)ith / MT_MERL_THETA_H, th = s * s * half_pi;
-    double td = (double)itd / MT_MERL_THETA_D * half_pi;
-    double pd = (double)ipd / MT_MERL_PHI_D * (2 * half_pi);
+    double s = uh / MT_MERL_THETA_H, th = s * s * half_pi;
+    double td = ud / MT_MERL_THETA_D * half_pi, pd = up / MT_MERL_PHI_D * (2 * half_pi);
     double sh = sin(th), ch = cos(th), st = sin(td);
     /* wi's coordinates in the half vector's frame (pbrt-v2's wd) */
     double dx = st * cos(pd), dy = st * sin(pd), dz = cos(td);
-    /* the frame for phi_h = 0: whx = (cos th, 0, -sin th), why = y, wh */
     double ix = dx * ch + dz * sh, iy = dy, iz = -dx * sh + dz * ch;
     /* wo = 2 (wi . wh) wh - wi, with wi . wh = dz */
     *wi = mt_v3((mt_real)ix, (mt_real)iy, (mt_real)iz);
     *wo = mt_v3((mt_real)(2 * dz * sh - ix), (mt_real)-iy, (mt_real)(2 * dz * ch - iz));
 }
 
-mt_status mt_merl_tabulate(const mt_bsdf *b, double *values, mt_error *err)
+mt_status mt_merl_tabulate(const mt_bsdf *b, mt_merl_at at, double *values, mt_error *err)
 {
+    double off = at == MT_MERL_AT_CENTRE ? 0.5 : 0;
     int ith, itd, ipd, c;
     for (ith = 0; ith < MT_MERL_THETA_H; ++ith)
         for (itd = 0; itd < MT_MERL_THETA_D; ++itd)
@@ -38,7 +35,7 @@ mt_status mt_merl_tabulate(const mt_bsdf *b, double *values, mt_error *err)
                 size_t i = (size_t)ipd + MT_MERL_PHI_D * ((size_t)itd + (size_t)ith * MT_MERL_THETA_D);
                 mt_vec3 wo, wi;
                 mt_rgb f = mt_rgb_black();
-                mt_merl_grid_directions(ith, itd, ipd, &wo, &wi);
+                mt_merl_directions(ith + off, itd + off, ipd + off, &wo, &wi);
                 if (wo.z > 0 && wi.z > 0)
                     f = mt_bsdf_f(b, mt_bsdf_local_to_world(b, wo), mt_bsdf_local_to_world(b, wi),
                                   MT_BSDF_ALL);

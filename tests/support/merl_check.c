@@ -1,7 +1,6 @@
 /* Checks of MERL tables against the BSDF they were made from. */
 #include <math.h>
 #include <stdlib.h>
-#include "materia/measured.h"
 #include "support/check.h"
 #include "support/merl_check.h"
 
@@ -10,21 +9,11 @@
 
 void t_merl_pair(double uh, double ud, double up, double phi_h, mt_vec3 *wo, mt_vec3 *wi)
 {
-    const double half_pi = 1.57079632679489661923;
-    double s = uh / MT_MERL_THETA_H, th = s * s * half_pi, td = ud / MT_MERL_THETA_D * half_pi;
-    double pd = up / MT_MERL_PHI_D * 2 * half_pi, sh = sin(th), ch = cos(th), st = sin(td);
-    double dx = st * cos(pd), dy = st * sin(pd), dz = cos(td);
-    double i[3], o[3], c = cos(phi_h), sn = sin(phi_h);
-    /* wi = rotation about y by theta_h of the difference vector; wo its
-     * mirror about the half vector (sin th, 0, cos th); then phi_h about z */
-    i[0] = dx * ch + dz * sh;
-    i[1] = dy;
-    i[2] = -dx * sh + dz * ch;
-    o[0] = 2 * dz * sh - i[0];
-    o[1] = -i[1];
-    o[2] = 2 * dz * ch - i[2];
-    *wi = mt_v3((mt_real)(c * i[0] - sn * i[1]), (mt_real)(sn * i[0] + c * i[1]), (mt_real)i[2]);
-    *wo = mt_v3((mt_real)(c * o[0] - sn * o[1]), (mt_real)(sn * o[0] + c * o[1]), (mt_real)o[2]);
+    double c = cos(phi_h), sn = sin(phi_h);
+    mt_vec3 o, i;
+    mt_merl_directions(uh, ud, up, &o, &i);
+    *wi = mt_v3((mt_real)(c * i.x - sn * i.y), (mt_real)(sn * i.x + c * i.y), i.z);
+    *wo = mt_v3((mt_real)(c * o.x - sn * o.y), (mt_real)(sn * o.x + c * o.y), o.z);
 }
 
 static mt_rgb f_at(const mt_bsdf *b, double uh, double ud, double up, double phi_h)
@@ -58,7 +47,7 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-static void exact_in_bins(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table)
+static void exact_in_bins(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table, double off)
 {
     mt_rng r;
     int n, c, bad = 0;
@@ -70,7 +59,7 @@ static void exact_in_bins(const char *prefix, const mt_bsdf *truth, const mt_bsd
         mt_vec3 go, gi;
         mt_rgb want, got;
         pick_bin(&r, &ih, &id, &ip);
-        mt_merl_grid_directions(ih, id, ip, &go, &gi);
+        mt_merl_directions(ih + off, id + off, ip + off, &go, &gi);
         want = mt_bsdf_f(truth, go, gi, MT_BSDF_ALL);
         got = f_at(table, ih + 0.1 + 0.8 * mt_rng_uniform_d(&r), id + 0.1 + 0.8 * mt_rng_uniform_d(&r),
                    ip + 0.1 + 0.8 * mt_rng_uniform_d(&r), 2 * T_PI * mt_rng_uniform_d(&r));
@@ -78,16 +67,16 @@ static void exact_in_bins(const char *prefix, const mt_bsdf *truth, const mt_bsd
             double e = t_reldiff(got.c[c], want.c[c], 1e-30);
             if (e > worst) worst = e;
             if (e > 4 * MT_REAL_EPSILON && bad++ < 3)
-                printf("  bin (%d, %d, %d) channel %d: table %.9g, f at the grid point %.9g\n", ih,
+                printf("  bin (%d, %d, %d) channel %d: table %.9g, f at the sample point %.9g\n", ih,
                        id, ip, c, got.c[c], want.c[c]);
         }
     }
-    snprintf(name, sizeof name, "%s: inside a bin the table gives f at its grid point", prefix);
+    snprintf(name, sizeof name, "%s: inside a bin the table gives f at its sample point", prefix);
     t_check(bad == 0, name, "%d of %d values differ beyond 4 ulps (worst %.3g relative)", bad,
             3 * TRIES, worst);
 }
 
-static void within_bin_variation(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table)
+static void within_bin_variation(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table, double off)
 {
     mt_rng r;
     int n, c, k, bad = 0, m = 0;
@@ -103,7 +92,7 @@ static void within_bin_variation(const char *prefix, const mt_bsdf *truth, const
         ud = id + 0.01 + 0.98 * mt_rng_uniform_d(&r);
         up = ip + 0.01 + 0.98 * mt_rng_uniform_d(&r);
         for (k = 0; k < 8; ++k) corner[k] = f_at(truth, ih + (k & 1), id + (k >> 1 & 1), ip + (k >> 2 & 1), 0);
-        g = corner[0];
+        g = f_at(truth, ih + off, id + off, ip + off, 0);
         {
             double phi = 2 * T_PI * mt_rng_uniform_d(&r);
             t = f_at(table, uh, ud, up, phi);
@@ -112,8 +101,8 @@ static void within_bin_variation(const char *prefix, const mt_bsdf *truth, const
         for (c = 0; c < 3; ++c) {
             double v = 0, e = fabs(t.c[c] - f.c[c]);
             double tol = 8 * MT_REAL_EPSILON * fmax(fabs(g.c[c]), fabs(f.c[c]));
-            for (k = 1; k < 8; ++k) v = fmax(v, fabs(corner[k].c[c] - g.c[c]));
-            if (v > 0 && e / v > worst) worst = e / v;
+            for (k = 0; k < 8; ++k) v = fmax(v, fabs(corner[k].c[c] - g.c[c]));
+            if (v > tol && e / v > worst) worst = e / v;
             if (e > v + tol && bad++ < 3)
                 printf("  bin (%d, %d, %d) channel %d at (%.3f, %.3f, %.3f): error %.3g above the "
                        "corner variation %.3g\n", ih, id, ip, c, uh, ud, up, e, v);
@@ -135,9 +124,9 @@ static void within_bin_variation(const char *prefix, const mt_bsdf *truth, const
     free(rel);
 }
 
-/* Mean |table - f| at offset t (in bin widths, along a random direction
- * in the bin) from the grid point. */
-static double mean_error_at(const mt_bsdf *truth, const mt_bsdf *table, double t)
+/* Mean |table - f| at t times a random offset from the sample point to a
+ * point of the bin. */
+static double mean_error_at(const mt_bsdf *truth, const mt_bsdf *table, double off, double t)
 {
     mt_rng r;
     int n, c;
@@ -148,9 +137,10 @@ static double mean_error_at(const mt_bsdf *truth, const mt_bsdf *table, double t
         double uh, ud, up, phi;
         mt_rgb a, b;
         pick_bin(&r, &ih, &id, &ip);
-        uh = ih + 1e-3 + t * mt_rng_uniform_d(&r);
-        ud = id + 1e-3 + t * mt_rng_uniform_d(&r);
-        up = ip + 1e-3 + t * mt_rng_uniform_d(&r);
+        /* corner: offsets in [0, 1), kept 1e-3 off the bin's edge */
+        uh = ih + off + 1e-3 + t * (mt_rng_uniform_d(&r) - off);
+        ud = id + off + 1e-3 + t * (mt_rng_uniform_d(&r) - off);
+        up = ip + off + 1e-3 + t * (mt_rng_uniform_d(&r) - off);
         phi = 2 * T_PI * mt_rng_uniform_d(&r);
         a = f_at(table, uh, ud, up, phi);
         b = f_at(truth, uh, ud, up, phi);
@@ -159,22 +149,24 @@ static double mean_error_at(const mt_bsdf *truth, const mt_bsdf *table, double t
     return sum / (3.0 * TRIES);
 }
 
-static void linear_in_offset(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table)
+static void linear_in_offset(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table, double off)
 {
-    double e2 = mean_error_at(truth, table, 0.2), e4 = mean_error_at(truth, table, 0.4);
-    double e8 = mean_error_at(truth, table, 0.8), r2 = (e2 / 0.2) / (e8 / 0.8), r4 = (e4 / 0.4) / (e8 / 0.8);
+    double e2 = mean_error_at(truth, table, off, 0.2), e4 = mean_error_at(truth, table, off, 0.4);
+    double e8 = mean_error_at(truth, table, off, 0.8), r2 = (e2 / 0.2) / (e8 / 0.8), r4 = (e4 / 0.4) / (e8 / 0.8);
     char name[160];
-    printf("  %s: mean |table - f| at offset 0.2, 0.4, 0.8 of a bin: %.4g, %.4g, %.4g\n", prefix,
+    printf("  %s: mean |table - f| at 0.2, 0.4, 0.8 of the way from the sample point: %.4g, %.4g, %.4g\n", prefix,
            e2, e4, e8);
-    snprintf(name, sizeof name, "%s: the error is first order in the offset into the bin", prefix);
+    snprintf(name, sizeof name, "%s: the error is first order in the distance from the sample point", prefix);
     t_check(e8 > 0 && r2 > 0.8 && r2 < 1.05 && r4 > 0.8 && r4 < 1.05, name,
             "error per unit offset at 0.2 and 0.4 is %.3f and %.3f times that at 0.8 (want 0.8 to "
             "1.05)", r2, r4);
 }
 
-void t_merl_roundtrip_checks(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table)
+void t_merl_roundtrip_checks(const char *prefix, const mt_bsdf *truth, const mt_bsdf *table,
+                             mt_merl_at at)
 {
-    exact_in_bins(prefix, truth, table);
-    within_bin_variation(prefix, truth, table);
-    linear_in_offset(prefix, truth, table);
+    double off = at == MT_MERL_AT_CENTRE ? 0.5 : 0;
+    exact_in_bins(prefix, truth, table, off);
+    within_bin_variation(prefix, truth, table, off);
+    linear_in_offset(prefix, truth, table, off);
 }

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "support/check.h"
 #include "support/pbrt_values.h"
 
 int t_bsdf_row_parse(const char *line, t_bsdf_row *row)
@@ -75,4 +76,46 @@ int t_bsdf_row_agrees(const mt_bsdf *b, const t_bsdf_row *row, int show, double 
                    s.type, v[5], v[6], v[7], v[11], v[14], (int)v[15]);
     }
     return ok;
+}
+
+void t_check_pbrt_rows(const char *id, const char *name, t_bsdf_builder build, void *ctx)
+{
+    const char *shared = t_shared_dir();
+    char path[512], line[1024];
+    FILE *fp;
+    mt_arena *a;
+    int rows = 0, bad = 0;
+    if (!shared) {
+        t_skip(name, "../shared is absent");
+        return;
+    }
+    snprintf(path, sizeof path, "%s/reference/pbrt-v2-values/bsdf-values.csv", shared);
+    if (!(fp = fopen(path, "r"))) {
+        t_fail(name, "cannot open %s", path);
+        return;
+    }
+    a = mt_arena_create(0);
+    while (fgets(line, sizeof line, fp)) {
+        t_bsdf_row row;
+        mt_bsdf *b;
+        mt_error err;
+        if (!t_bsdf_row_parse(line, &row) || strcmp(row.id, id)) continue;
+        mt_arena_reset(a);
+        if (!(b = build(ctx, a, &err))) {
+            t_fail(name, "no BSDF: %s", err.message);
+            bad = -1;
+            break;
+        }
+        rows++;
+        if (!t_bsdf_row_agrees(b, &row, bad < 3, NULL)) bad++;
+    }
+    fclose(fp);
+    mt_arena_destroy(a);
+    if (bad < 0) return;
+    if (!MT_USE_DOUBLE)
+        t_check(rows == 400 && bad == 0, name, "%d of %d rows differ", bad, rows);
+    else
+        t_skip(name, "double build: %d of %d rows agree to the float tolerances (the rest are "
+               "ill-conditioned at float precision); the verdict is the float build's",
+               rows - bad, rows);
 }

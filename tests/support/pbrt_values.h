@@ -24,4 +24,15 @@ int t_bsdf_row_parse(const char *line, t_bsdf_row *row);
  * direction difference of a sample row. */
 int t_bsdf_row_agrees(const mt_bsdf *b, const t_bsdf_row *row, int show, double *dw);
 
+/* Builds the BSDF to compare with one row (in arena a, reset before each
+ * row); NULL with err filled on failure. */
+typedef mt_bsdf *(*t_bsdf_builder)(void *ctx, mt_arena *a, mt_error *err);
+
+/* Compares every row with this id against the BSDF build makes, and reports
+ * under name: in the float build PASS when 400 rows agree, else FAIL (the
+ * first three disagreements printed); in the double build SKIP with the
+ * count (rows ill-conditioned at float precision differ; the float build
+ * carries the verdict); SKIP without ../shared. */
+void t_check_pbrt_rows(const char *id, const char *name, t_bsdf_builder build, void *ctx);
+
 #endif
