@@ -5,6 +5,8 @@
 #   make PRECISION=double      the same with mt_real = double, in build/double
 #   make SANITIZE=address,undefined check
 #   make bench                 benchmarks (float and double, ratios from one run)
+#   make demo                  a contact sheet of every material: demo.png
+#   make golden                render the golden images again
 #   make install PREFIX=/usr/local DESTDIR=
 #
 # CFLAGS, CPPFLAGS and LDFLAGS belong to the user: the flags materia needs are
@@ -85,7 +87,7 @@ SHARED_LIB := $(BUILD)/libmateria.so.$(VERSION)
 SONAME     := libmateria.so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 
-.PHONY: all lib tools tests benches check check-full other-conformance bench demo install clean distclean help
+.PHONY: all lib tools tests benches check check-full other-conformance bench demo golden install clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -158,6 +160,15 @@ bench:
 	$(MAKE) PRECISION=double SANITIZE= all benches
 	sh tools/run-bench.sh build/float/bench build/double/bench
 
+# A contact sheet of every material (golden/scenes) in demo.png.
+demo: all
+	sh tools/make-demo.sh $(BUILD)
+
+# Renders the golden images again (golden/*.exr, golden/*.var.exr): after a
+# change that is meant to change images. Review the difference first.
+golden: all
+	sh tools/make-golden.sh $(BUILD)
+
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include/materia $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
 	install -m 644 include/materia.h $(DESTDIR)$(PREFIX)/include/
@@ -178,7 +189,7 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,12p' Makefile
+	@sed -n '2,14p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \

@@ -30,6 +30,22 @@
 #include "materia/diffgeom.h"
 #include "materia/bxdf.h"
 #include "materia/bsdf.h"
+#include "materia/cubature.h"
+#include "materia/transform.h"
+#include "materia/spectrum.h"
+#include "materia/params.h"
+#include "materia/parser.h"
+#include "materia/state.h"
+#include "materia/image.h"
+#include "materia/mipmap.h"
+#include "materia/texture.h"
+#include "materia/bump.h"
+#include "materia/measured.h"
+#include "materia/material.h"
+#include "materia/query.h"
+#include "materia/imgcmp.h"
+#include "materia/sheet.h"
+#include "materia/render.h"
 
 /* The version of the library ("0.1.0") and its precision ("float"/"double"):
  * a program built against one precision's headers must link that build. */

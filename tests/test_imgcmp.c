@@ -264,13 +264,16 @@ static void test_accumulator(void)
 
 /* One 4x4 block: a = 1, b = 1 - d, var_a = 0.0016 per pixel, var_b = 0:
  * the block mean's variance is 16 * 0.0016 / 16^2 = 1e-4, z = d / 0.01.
- * Three channels: m = 3, threshold 1 - 0.99^(1/3) = 0.0033445. */
+ * Three channels: m = 3, threshold 1 - 0.995^(1/3) = 0.00166945 (half of
+ * alpha = 0.01 goes to the local tests), |z| 3.1434916 (bisection in
+ * Python's math.erfc); the global test has the same threshold (3 channels
+ * at alpha / 2) and one z per channel: bias_z = z. */
 static void test_ztest_by_hand(void)
 {
     mt_image a = t_image_make(4, 4, 3, 1), b = t_image_make(4, 4, 3, 0.9f), va = t_image_make(4, 4, 3, 0.0016f), zmap;
     mt_ztest_result r;
     mt_error err;
-    double thr = 1 - pow(0.99, 1.0 / 3);
+    double thr = 1 - pow(0.995, 1.0 / 3);
     int ok = mt_imgcmp_ztest(&a, &va, &b, NULL, NULL, &r, &zmap, &err) == MT_OK;
     t_check(ok && r.tests == 3 && r.exact == 0 && !r.pass && r.beyond == 3,
             "z-test by hand: d = 0.1 is z = 10, three tests fail", "%s tests %ld beyond %ld",
@@ -281,13 +284,30 @@ static void test_ztest_by_hand(void)
         mt_image_free(&zmap);
     }
     t_near(r.threshold, thr, 1e-12, "z-test by hand: Sidak threshold for m = 3");
-    t_near(r.z_threshold, 2.934161, 1e-5, "z-test by hand: |z| at the threshold");
+    t_near(r.z_threshold, 3.1434916, 1e-6, "z-test by hand: |z| at the threshold");
+    t_near(r.bias_z_threshold, 3.1434916, 1e-6, "z-test by hand: |bias z| at the threshold");
+    t_near(r.bias_z[1], 10, 1e-4, "z-test by hand: one block: bias z = z");
     t_near(r.mean_rel, 0.1 / 0.91, 1e-6, "z-test by hand: mean relative difference");
     mt_image_free(&b);
     b = t_image_make(4, 4, 3, 0.98f);
     ok = mt_imgcmp_ztest(&a, &va, &b, NULL, NULL, &r, NULL, &err) == MT_OK;
     t_check(ok && r.pass, "z-test by hand: d = 0.02 (z = 2) passes", "min p %g", r.min_p);
     t_near(r.min_p, erfc(2 / sqrt(2.0)), 1e-5, "z-test by hand: min p = erfc(2 / sqrt 2)");
+    /* 64 blocks of z = 1: no block is beyond 3.7 (Sidak over 192 tests) but
+     * the global test sums them: bias_z = 64 / sqrt 64 = 8 */
+    {
+        mt_image a2 = t_image_make(32, 32, 3, 1), b2 = t_image_make(32, 32, 3, 0.99f),
+                 v2 = t_image_make(32, 32, 3, 0.0016f);
+        ok = mt_imgcmp_ztest(&a2, &v2, &b2, NULL, NULL, &r, NULL, &err) == MT_OK;
+        t_check(ok && !r.pass && r.beyond == 0 && r.tests == 192 && fabs(r.bias_z[2] - 8) < 1e-3 &&
+                    fabs(r.max_abs_z - 1) < 1e-3,
+                "z-test by hand: a 1% bias everywhere is found by the global test alone",
+                "pass %d, beyond %ld, tests %ld, bias z %g, max z %g", r.pass, r.beyond, r.tests,
+                r.bias_z[2], r.max_abs_z);
+        mt_image_free(&a2);
+        mt_image_free(&b2);
+        mt_image_free(&v2);
+    }
     /* per pixel: each pixel's variance 0.0016, z = 0.02 / 0.04 = 0.5 */
     {
         mt_ztest_options o = mt_ztest_defaults();
@@ -367,13 +387,13 @@ static int trial(mt_rng *rng, double bias, int region[4], mt_ztest_result *r, mt
  * failures is Binomial(200, 0.01): mean 2, P(>= 9) = 2.6e-4 -- more than 8
  * means the test is miscalibrated. The 200 * 168 z values are N(0, 1): mean
  * z^2 within 0.02 of 1 (its sd is sqrt(2 / 33600) = 0.0077) and 5% beyond
- * 1.96 (sd 0.12%). A variance off by 10% (a forgotten side, n for n - 1 on
+ * 1.96 (sd 0.12%); so are the 600 global bias z. A variance off by 10% (a forgotten side, n for n - 1 on
  * few samples, n instead of n^2) misses these. */
 static void test_ztest_false_alarms(void)
 {
     int region[4] = {0, 0, 0, 0}, t, failures = 0, exact_ok = 1, bad = 0;
     long nz = 0, beyond196 = 0;
-    double z2 = 0;
+    double z2 = 0, bias2 = 0;
     mt_rng rng;
     mt_rng_seed(&rng, 2024, 7);
     for (t = 0; t < 200; ++t) {
@@ -385,6 +405,7 @@ static void test_ztest_false_alarms(void)
             continue;
         }
         failures += !r.pass;
+        bias2 += r.bias_z[0] * r.bias_z[0] + r.bias_z[1] * r.bias_z[1] + r.bias_z[2] * r.bias_z[2];
         /* the background column of blocks: 8 blocks x 3 channels, all equal */
         exact_ok &= r.exact == 24 && r.exact_mismatch == 0 && r.tests == 168;
         for (k = 0; k < (size_t)zmap.width * zmap.height * 3; ++k) {
@@ -405,6 +426,8 @@ static void test_ztest_false_alarms(void)
             nz);
     t_rel((double)beyond196 / (double)nz, 0.05, 0.1, 0,
           "z-test trials: 5% of |z| beyond 1.96");
+    /* 600 bias z, N(0, 1): the mean square's sd is sqrt(2 / 600) = 0.058 */
+    t_near(bias2 / 600, 1, 0.2, "z-test trials: the global bias z is calibrated (mean square 1)");
 }
 
 /* +2% in the 8x8 region x, y in [24, 32) x [0, 8) (mu about 0.7-0.8, sd 0.05

@@ -195,10 +195,14 @@ static int compare(const args *a, mt_image im[4])
         if (zr.max_bx >= 0)
             printf(" at block (%d, %d) %s", zr.max_bx, zr.max_by, chan(&im[0], zr.max_c));
         printf("; %ld exact (zero variance), %ld differ\n", zr.exact, zr.exact_mismatch);
+        if (zr.bias_c >= 0)
+            printf("ztest bias: largest |sum z / sqrt m| %.3f in %s (threshold %.3f)\n",
+                   fabs(zr.bias_z[zr.bias_c]), chan(&im[0], zr.bias_c), zr.bias_z_threshold);
         if (a->fail_ztest && !zr.pass) {
-            fprintf(stderr, "%s: the z-test fails (%ld of %ld tests beyond the threshold, %ld "
-                            "zero-variance blocks differ)\n",
-                    prog, zr.beyond, zr.tests, zr.exact_mismatch);
+            fprintf(stderr, "%s: the z-test fails (%ld of %ld tests beyond the threshold, global "
+                            "bias z %.3f against %.3f, %ld zero-variance blocks differ)\n",
+                    prog, zr.beyond, zr.tests, zr.bias_c >= 0 ? zr.bias_z[zr.bias_c] : 0.0,
+                    zr.bias_z_threshold, zr.exact_mismatch);
             status = 2;
         }
     }

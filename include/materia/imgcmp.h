@@ -95,7 +95,8 @@ typedef struct mt_ztest_options {
 MT_API mt_ztest_options mt_ztest_defaults(void);
 
 typedef struct mt_ztest_result {
-    int pass;            /* min_p > threshold and no exact mismatch */
+    int pass;            /* min_p > threshold, every |bias_z| < bias_z_threshold
+                            and no exact mismatch */
     long tests;          /* m: block-channel pairs with a variance, each a z-test */
     long exact;          /* block-channel pairs where both variances are 0 */
     long exact_mismatch; /* of these, the pairs whose means differ (see above) */
@@ -106,6 +107,9 @@ typedef struct mt_ztest_result {
     int max_bx, max_by, max_c; /*   channel max_c (all -1 when m = 0) */
     long beyond;         /* tests with p <= threshold */
     double mean_rel;     /* mean |a - b| / (|b| + 0.01) over all block-channel pairs */
+    double bias_z[3];    /* per channel (1 or 3): the sum of its tests' z over sqrt(their count) */
+    double bias_z_threshold; /* |bias_z| at which the global test fails */
+    int bias_c;          /* the channel of the largest |bias_z| (-1 when m = 0) */
     int blocks_x, blocks_y, channels;
 } mt_ztest_result;
 
@@ -119,12 +123,20 @@ typedef struct mt_ztest_result {
  * Per block (side opt->block) and colour channel: the block means ma, mb,
  * the variances of the block means va, vb (the pixel variances summed over
  * the block's n pixels and divided by n^2: pixels are independent), and
- * z = (ma - mb) / sqrt(va + vb), two-sided p = erfc(|z| / sqrt 2). With m
- * tests, the image passes when the smallest p exceeds the Sidak threshold
- * 1 - (1 - alpha)^(1/m): an unbiased render fails with probability alpha
- * (when the tests are independent -- R, G and B of one block are usually
- * positively correlated, which makes the test conservative -- and the block
- * means nearly normal: a few hundred samples per block). With variances
+ * z = (ma - mb) / sqrt(va + vb), two-sided p = erfc(|z| / sqrt 2). Two
+ * tests share the significance alpha, half each:
+ * - local: with m tests, the image passes when the smallest p exceeds the
+ *   Sidak threshold 1 - (1 - alpha/2)^(1/m). It finds an error confined to
+ *   a region (a wrong highlight, a leak at an edge).
+ * - global: per channel, bias_z = (sum of its z) / sqrt(its count), N(0, 1)
+ *   for an unbiased render; the image passes when every |bias_z| is below
+ *   the Sidak threshold over the channels at alpha/2. It finds a small error
+ *   spread over the whole image (a colour 5% off) that no block shows alone:
+ *   the z of 484 blocks each shifted by 0.5 sum to a bias_z of 11.
+ * An unbiased render fails with probability at most alpha (when the tests
+ * are independent -- R, G and B of one block are usually positively
+ * correlated, which makes the test conservative -- and the block means
+ * nearly normal: a few hundred samples per block). With variances
  * estimated from few samples z is really a t statistic, with heavier tails:
  * at 16 samples per pixel and 4x4 blocks the measured false-alarm rate is
  * 1.2% for alpha = 1% (5000 trials of tests/test_imgcmp.c's scene).

@@ -6,7 +6,9 @@
  * sample count, and accept when 99.75% of the pixels pass the Sidak
  * threshold; here both images' variances of the mean enter, blocks make the
  * means close to normal at low sample counts, and the smallest p-value
- * decides, so the false-alarm rate of an honest render is alpha.
+ * decides, so the false-alarm rate of an honest render is alpha; a global
+ * test of the mean z per channel (half of alpha) adds the power to see a
+ * small bias of the whole image that no single block shows.
  * Pixels are independent, so the variance of a block mean is the sum of its
  * pixels' variances of the mean divided by n^2.
  */
@@ -103,7 +105,10 @@ mt_status mt_imgcmp_ztest(const mt_image *a, const mt_image *var_a, const mt_ima
     mt__grid g;
     mt_status st;
     double *ma = NULL, *mb = NULL, *va = NULL, *vb = NULL, rel = 0, min_p = 1;
+    double zsum[3] = {0, 0, 0};
+    long zcount[3] = {0, 0, 0};
     size_t n, k;
+    int c;
     if (!out) return mt_error_set(err, MT_ERR_INVALID, "mt_imgcmp_ztest: no output");
     if ((st = mt__cmp_pair(a, b, o.block, &g, err)) != MT_OK) return st;
     if ((st = check_inputs(var_a, var_b, &o, &g, err)) != MT_OK) return st;
@@ -115,9 +120,11 @@ mt_status mt_imgcmp_ztest(const mt_image *a, const mt_image *var_a, const mt_ima
     n = (size_t)g.bx * (size_t)g.by * (size_t)g.nc;
     out->tests = out->exact = out->exact_mismatch = out->beyond = 0;
     for (k = 0; k < n; ++k) out->tests += va[k] + vb[k] > 0;
-    /* 1 - (1 - alpha)^(1/m) without cancellation for large m */
-    out->threshold = out->tests ? -expm1(log1p(-o.alpha) / (double)out->tests) : o.alpha;
+    /* 1 - (1 - alpha/2)^(1/m) without cancellation for large m; the other
+     * half of alpha goes to the channels' global tests */
+    out->threshold = out->tests ? -expm1(log1p(-0.5 * o.alpha) / (double)out->tests) : o.alpha;
     out->z_threshold = z_for_p(out->threshold);
+    out->bias_z_threshold = z_for_p(-expm1(log1p(-0.5 * o.alpha) / (double)g.nc));
     out->max_abs_z = 0;
     out->max_bx = out->max_by = out->max_c = -1;
     for (k = 0; k < n; ++k) {
@@ -130,6 +137,8 @@ mt_status mt_imgcmp_ztest(const mt_image *a, const mt_image *var_a, const mt_ima
         } else {
             double p = p_two_sided(z);
             if (p < min_p) min_p = p;
+            zsum[k % (size_t)g.nc] += z;
+            zcount[k % (size_t)g.nc]++;
             out->beyond += p <= out->threshold;
             if (fabs(z) > out->max_abs_z || out->max_bx < 0) {
                 size_t blk = k / (size_t)g.nc;
@@ -144,6 +153,13 @@ mt_status mt_imgcmp_ztest(const mt_image *a, const mt_image *var_a, const mt_ima
     out->min_p = min_p;
     out->mean_rel = rel / (double)n;
     out->pass = out->exact_mismatch == 0 && min_p > out->threshold;
+    out->bias_c = -1;
+    for (c = 0; c < 3; ++c) {
+        out->bias_z[c] = zcount[c] ? zsum[c] / sqrt((double)zcount[c]) : 0;
+        if (c < g.nc && zcount[c] && (out->bias_c < 0 || fabs(out->bias_z[c]) > fabs(out->bias_z[out->bias_c])))
+            out->bias_c = c;
+    }
+    if (out->bias_c >= 0 && !(fabs(out->bias_z[out->bias_c]) < out->bias_z_threshold)) out->pass = 0;
     out->blocks_x = g.bx;
     out->blocks_y = g.by;
     out->channels = g.nc;

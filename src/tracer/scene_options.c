@@ -149,8 +149,9 @@ static mt_status build_sampler(mt__loader *ld, mt_error *err)
     s->sampler_name = mt__strdup(type);
     if (!s->sampler_name) return mt_error_set(err, MT_ERR_NOMEM, "out of memory");
     mt__loader_warn(ld, o->file, o->line,
-                    "Sampler \"%s\": materia renders %d samples per pixel with its own "
-                    "deterministic low-discrepancy sampler (Owen-scrambled Sobol' points)",
+                    "Sampler \"%s\" (%d samples per pixel unless the renderer is told otherwise): "
+                    "materia draws them from its own deterministic low-discrepancy sampler "
+                    "(Owen-scrambled Sobol' points)",
                     type, spp);
     return MT_OK;
 }
