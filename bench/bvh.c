@@ -156,7 +156,7 @@ int main(void)
     }
     if (nthreads < 1) nthreads = 1;
     if (nthreads > 64) nthreads = 64;
-    snprintf(path, sizeof path, "%s/reference/scenes/geometry/bunny.pbrt", dir);
+    snprintf(path, sizeof path, "%s/reference/scenes/geometry/%s", dir, getenv("MT_BENCH_SCENE") ? getenv("MT_BENCH_SCENE") : "bunny.pbrt");
     for (r = 0; r < REPS; ++r) {
         double t0;
         mt_geometry_destroy(g);

@@ -171,6 +171,7 @@ static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, 
     }
     rej = _mm_and_ps(_mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)), _mm_cmplt_ps(e2, zero)),
                      _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero)));
+    if (_mm_movemask_ps(rej) == 15) return 0; /* the ray passes outside all four */
     det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
     rej = _mm_or_ps(rej, _mm_cmpeq_ps(det, zero));
     az = _mm_mul_ps(az, t->ts[2]);
