@@ -25,6 +25,14 @@
 #define USE_SSE 0
 #endif
 
+/* The traversal loop and the tests it calls are inlined into both queries,
+ * so that each is compiled for its own case (GCC and clang). */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE
+#endif
+
 typedef struct trav {
 #if USE_SSE
     __m128 vo[3], vi[3], vf[3]; /* origin, inverse direction, its scaled copy */
@@ -86,7 +94,7 @@ static void trav_init(trav *t, const mt_ray *r)
  * comparisons put it first, and SSE's max and min return their second
  * operand when one is NaN. */
 #if USE_SSE
-static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 tmin, __m128 tmax,
+static inline ALWAYS_INLINE unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 tmin, __m128 tmax,
                                  mt_real tn_out[4])
 {
     __m128 a = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nx]), t->vo[0]), t->vi[0]);
@@ -103,7 +111,7 @@ static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 t
 typedef __m128 tbound;
 static tbound to_bound(mt_real v) { return _mm_set1_ps(v); }
 #else
-static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, mt_real tmin, mt_real tmax,
+static inline ALWAYS_INLINE unsigned node_hits(const trav *t, const mt__bvh_node *nd, mt_real tmin, mt_real tmax,
                                  mt_real tn_out[4])
 {
     const mt_real *nxr = nd->b[t->nx], *fxr = nd->b[t->nx ^ 1];
@@ -146,7 +154,7 @@ static inline int low_bit(unsigned m)
  * lane: the caller then tests the lanes one by one, with the double-precision
  * recomputation of the scalar test. */
 #if USE_SSE
-static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, __m128 tmax,
+static inline ALWAYS_INLINE unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, __m128 tmax,
                                  mt_real tt[4], mt_real b1[4], mt_real b2[4], int *exact)
 {
     const int kx = t->tr.kx, ky = t->tr.ky, kz = t->tr.kz;
@@ -209,7 +217,7 @@ static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, 
     return (unsigned)_mm_movemask_ps(valid);
 }
 #else
-static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, mt_real tmin, mt_real tmax,
+static inline ALWAYS_INLINE unsigned tri4_hits(const trav *t, const mt__tri4 *q, mt_real tmin, mt_real tmax,
                                  mt_real tt[4], mt_real b1[4], mt_real b2[4], int *exact)
 {
     unsigned m = 0;
@@ -251,9 +259,9 @@ static inline void prefetch_child(const mt_geometry *g, mt__bvh_ref c)
     }
 }
 
-/* Closest hit (any = 0) or any hit (any = 1); the compiler specializes the
- * two calls. */
-static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best *bs)
+/* Closest hit (any = 0) or any hit (any = 1): inlined into both callers so
+ * that each is compiled for its constant. */
+static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, int any, best *bs)
 {
     mt__bvh_ref stack[MT__BVH_STACK], cur = g->root;
     mt_real stack_t[MT__BVH_STACK], tmin = r->tmin, tmax = r->tmax, limit;
@@ -261,6 +269,9 @@ static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best 
     unsigned sp = 0;
     trav t;
     bs->found = 0;
+    bs->t = bs->b1 = bs->b2 = 0;
+    bs->id = 0;
+    bs->quad = 0;
     if (g->stats.prims == 0) return 0;
     trav_init(&t, r);
     {
