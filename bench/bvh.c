@@ -13,11 +13,17 @@
  * build time use the thread's CPU time (not inflated by waiting for a
  * processor); the all-threads rates are wall-clock over one thread per
  * online processor. tools/run-bench.sh pairs the float and double builds.
+ *
+ * "bvh SET N" (SET primary, incoherent or occlusion) traces N rays spread
+ * evenly over one set, once, without timing: for instruction counts, e.g.
+ *   valgrind --tool=callgrind --toggle-collect=mt_geometry_intersect \
+ *            --toggle-collect=mt_geometry_occluded build/float/bench/bvh incoherent 100000
  */
 #define _POSIX_C_SOURCE 200809L
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 #include <unistd.h>
 #include "support/check.h"
@@ -142,7 +148,7 @@ static void primary_rays(mt_ray *rays, int w, int h)
         }
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const char *dir = t_shared_dir();
     char path[512];
@@ -204,6 +210,29 @@ int main(void)
         mt_vec3 b = mt_v3(lo.x + (hi.x - lo.x) * mt_rng_uniform(&rng), lo.y + (hi.y - lo.y) * mt_rng_uniform(&rng),
                           lo.z + (hi.z - lo.z) * mt_rng_uniform(&rng));
         sets[2][i] = mt_ray_make(a, mt_v3_sub(b, a), 0, 1);
+    }
+    if (argc == 3) {
+        size_t n = (size_t)strtoul(argv[2], NULL, 10);
+        for (k = 0; k < 3 && strcmp(argv[1], names[k]) != 0; ++k) continue;
+        if (k == 3 || n == 0 || n > counts[k]) {
+            fprintf(stderr, "usage: bvh [primary|incoherent|occlusion N]\n");
+            return 2;
+        }
+        {
+            job j;
+            size_t i2;
+            for (i2 = 0; i2 < n; ++i2) sets[k][i2] = sets[k][i2 * (counts[k] / n)];
+            j.g = g;
+            j.rays = sets[k];
+            j.begin = 0;
+            j.end = n;
+            j.occlusion = k == 2;
+            run(&j);
+            printf("%s: %lu rays, %ld hits\n", names[k], (unsigned long)n, j.hits);
+        }
+        for (k = 0; k < 3; ++k) free(sets[k]);
+        mt_geometry_destroy(g);
+        return 0;
     }
     for (k = 0; k < 3; ++k) {
         long hits;
