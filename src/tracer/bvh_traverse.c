@@ -42,6 +42,7 @@ typedef struct trav {
     mt__tri_ray tr;
     mt_real o[3], inv[3], inv_far[3];
     int nx, ny, nz; /* rows of the near planes: 0/1, 2/3, 4/5 by direction sign */
+    size_t off[6];  /* byte offsets in a node of the near x, y, z and far x, y, z rows */
     mt_real exit_scale, prune_scale;
 } trav;
 
@@ -57,6 +58,12 @@ static void trav_init(trav *t, const mt_ray *r)
     t->nx = t->inv[0] < 0 ? 1 : 0;
     t->ny = t->inv[1] < 0 ? 3 : 2;
     t->nz = t->inv[2] < 0 ? 5 : 4;
+    t->off[0] = (size_t)t->nx * sizeof(mt_real[4]);
+    t->off[1] = (size_t)t->ny * sizeof(mt_real[4]);
+    t->off[2] = (size_t)t->nz * sizeof(mt_real[4]);
+    t->off[3] = (size_t)(t->nx ^ 1) * sizeof(mt_real[4]);
+    t->off[4] = (size_t)(t->ny ^ 1) * sizeof(mt_real[4]);
+    t->off[5] = (size_t)(t->nz ^ 1) * sizeof(mt_real[4]);
     /* exit distances scaled by 1 + 2 gamma(3): folded into the inverse
      * (the same number of roundings as scaling each distance) */
     t->exit_scale = 1 + 2 * mt__gamma(3);
@@ -97,12 +104,15 @@ static void trav_init(trav *t, const mt_ray *r)
 static inline ALWAYS_INLINE unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 tmin, __m128 tmax,
                                  mt_real tn_out[4])
 {
-    __m128 a = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nx]), t->vo[0]), t->vi[0]);
-    __m128 b = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->ny]), t->vo[1]), t->vi[1]);
-    __m128 c = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nz]), t->vo[2]), t->vi[2]);
-    __m128 d = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nx ^ 1]), t->vo[0]), t->vf[0]);
-    __m128 e = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->ny ^ 1]), t->vo[1]), t->vf[1]);
-    __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nz ^ 1]), t->vo[2]), t->vf[2]);
+    const char *base = (const char *)nd->b;
+#define ROW(i) _mm_loadu_ps((const float *)(const void *)(base + t->off[i]))
+    __m128 a = _mm_mul_ps(_mm_sub_ps(ROW(0), t->vo[0]), t->vi[0]);
+    __m128 b = _mm_mul_ps(_mm_sub_ps(ROW(1), t->vo[1]), t->vi[1]);
+    __m128 c = _mm_mul_ps(_mm_sub_ps(ROW(2), t->vo[2]), t->vi[2]);
+    __m128 d = _mm_mul_ps(_mm_sub_ps(ROW(3), t->vo[0]), t->vf[0]);
+    __m128 e = _mm_mul_ps(_mm_sub_ps(ROW(4), t->vo[1]), t->vf[1]);
+    __m128 f = _mm_mul_ps(_mm_sub_ps(ROW(5), t->vo[2]), t->vf[2]);
+#undef ROW
     __m128 n = _mm_max_ps(c, _mm_max_ps(b, _mm_max_ps(a, tmin)));
     __m128 x = _mm_min_ps(f, _mm_min_ps(e, _mm_min_ps(d, tmax)));
     _mm_storeu_ps(tn_out, n);
@@ -297,8 +307,7 @@ static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, 
                         int b = low_bit(mask);
                         mask &= mask - 1;
                         prefetch_child(g, nd->c[b]);
-                        stack[sp] = nd->c[b];
-                        stack_t[sp++] = tn[b];
+                        stack[sp++] = nd->c[b];
                     }
                     cur = nd->c[i0];
                     continue;
@@ -375,6 +384,12 @@ static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, 
                     vlimit = to_bound(limit);
                 }
             }
+        }
+        if (any) {
+            /* nothing to prune: every stacked child is still in [tmin, tmax] */
+            if (sp == 0) return 0;
+            cur = stack[--sp];
+            continue;
         }
         for (;;) {
             if (sp == 0) return bs->found;
