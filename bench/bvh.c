@@ -36,26 +36,25 @@
 static const double pbrt_rate[3] = {2.85, 0.70, 0.90}, embree_rate[3] = {8.95, 5.18, 6.52};
 static const double pbrt_build_ms = 119, embree_build_ms = 150;
 
-static double now(clockid_t c)
+/* Seconds on clock c (CPU time of this thread, or wall time). */
+static double seconds(clockid_t c)
 {
     struct timespec t;
     clock_gettime(c, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
-static int cmp(const void *x, const void *y)
+/* The best of n figures: the smallest time (low) or the highest rate. */
+static double best_low(const double *v, int n)
 {
-    double a = *(const double *)x, b = *(const double *)y;
-    return a < b ? -1 : a > b;
+    double b = v[0];
+    while (--n > 0) b = v[n] < b ? v[n] : b;
+    return b;
 }
-static double best_low(double *v, int n)
+static double best_high(const double *v, int n)
 {
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return v[0];
-}
-static double best_high(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return v[n - 1];
+    double b = v[0];
+    while (--n > 0) b = v[n] > b ? v[n] : b;
+    return b;
 }
 
 typedef struct job {
@@ -99,7 +98,7 @@ static double rate(const mt_geometry *g, const mt_ray *rays, size_t n, int occlu
         job jobs[64];
         pthread_t th[64];
         int k;
-        double t0 = now(nthreads == 1 ? CLOCK_THREAD_CPUTIME_ID : CLOCK_MONOTONIC);
+        double t0 = seconds(nthreads == 1 ? CLOCK_THREAD_CPUTIME_ID : CLOCK_MONOTONIC);
         for (k = 0; k < nthreads; ++k) {
             jobs[k].g = g;
             jobs[k].rays = rays;
@@ -114,7 +113,7 @@ static double rate(const mt_geometry *g, const mt_ray *rays, size_t n, int occlu
             if (nthreads > 1 && th[k]) pthread_join(th[k], NULL);
             *hits += jobs[k].hits;
         }
-        t[r] = (double)n / (now(nthreads == 1 ? CLOCK_THREAD_CPUTIME_ID : CLOCK_MONOTONIC) - t0) / 1e6;
+        t[r] = (double)n / (seconds(nthreads == 1 ? CLOCK_THREAD_CPUTIME_ID : CLOCK_MONOTONIC) - t0) / 1e6;
     }
     return best_high(t, REPS);
 }
@@ -178,12 +177,12 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench: %s: %s\n", path, err.message);
             return 1;
         }
-        t0 = now(CLOCK_THREAD_CPUTIME_ID);
+        t0 = seconds(CLOCK_THREAD_CPUTIME_ID);
         if (mt_geometry_commit(g, &err) != MT_OK) {
             fprintf(stderr, "bench: build: %s\n", err.message);
             return 1;
         }
-        tb[r] = (now(CLOCK_THREAD_CPUTIME_ID) - t0) * 1e3;
+        tb[r] = (seconds(CLOCK_THREAD_CPUTIME_ID) - t0) * 1e3;
     }
     build_ms = best_low(tb, REPS);
     mt_geometry_stats(g, &st);
