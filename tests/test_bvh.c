@@ -279,6 +279,28 @@ static void test_degenerate(void)
             "one sphere: hit at t = 4", "%s", g ? "wrong hit" : err.message);
     mt_geometry_destroy(g);
 
+    /* a material scene's geometry (two spheres over a floor): each sphere in
+     * a leaf of its own, since a quadric costs eight triangle tests */
+    {
+        mt_transform t1 = mt_translate(mt_v3(0, 0, 1)), t2 = mt_translate(mt_v3(3, -3, 6));
+        mt_shape *sh[3];
+        mt_bvh_stats st;
+        g = mt_geometry_create();
+        sh[0] = t_shape("Shape \"sphere\"", &t1, 0, NULL, &err);
+        sh[1] = t_shape("Shape \"sphere\"", &t2, 0, NULL, &err);
+        sh[2] = t_shape("Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] "
+                        "\"point P\" [-8 -8 0 8 -8 0 8 8 0 -8 8 0]", NULL, 0, NULL, &err);
+        ok = g && sh[0] && sh[1] && sh[2];
+        for (i = 0; i < 3; ++i)
+            if (ok) ok = mt_geometry_attach(g, sh[i], &err) == MT_OK;
+            else mt_shape_destroy(sh[i]);
+        ok = ok && mt_geometry_commit(g, &err) == MT_OK;
+        if (ok) mt_geometry_stats(g, &st);
+        t_check(ok && st.leaves == 3, "two spheres and a floor: three leaves", "%u leaves: %s",
+                ok ? (unsigned)st.leaves : 0, err.message);
+        mt_geometry_destroy(g);
+    }
+
     /* 3000 copies of one triangle: coincident centroids, halved by index */
     {
         int n = 3000, *idx = malloc(3 * (size_t)n * sizeof *idx);

@@ -1028,6 +1028,20 @@ static void check_spawn(const char *name, mt_shape *s, mt_vec3 centre, double si
     t_check(self == 0 && trials > 1000, buf, "%d self-hits in %d rays", self, trials);
 }
 
+static void test_offset_rounding(void)
+{
+    /* an offset below an ulp still moves the origin, by one ulp, to the
+     * side of w: from positive, negative and zero coordinates */
+    mt_vec3 tiny = mt_v3((mt_real)1e-30, (mt_real)1e-30, (mt_real)1e-30);
+    mt_vec3 n = mt_v3_normalize(mt_v3(1, -1, 1)), p = mt_v3(1, -2, 0);
+    mt_vec3 up = mt_offset_ray_origin(p, tiny, n, n), down = mt_offset_ray_origin(p, tiny, n, mt_v3_neg(n));
+    mt_vec3 same = mt_offset_ray_origin(p, mt_v3(0, 0, 0), n, n);
+    t_check(up.x > 1 && up.y < -2 && up.z > 0 && down.x < 1 && down.y > -2 && down.z < 0 &&
+                up.x - 1 <= 2 * MT_REAL_EPSILON && same.x == 1 && same.y == -2 && same.z == 0,
+            "spawn: offsets below an ulp still move the origin by one ulp, to w's side",
+            "up %g %g %g down %g %g %g", up.x, up.y, up.z, down.x, down.y, down.z);
+}
+
 static void test_spawn(void)
 {
     mt_transform far = mt_translate(mt_v3(1000, -2000, 500));
@@ -1215,6 +1229,7 @@ int main(void)
     test_shading();
     test_differentials();
     test_sampling();
+    test_offset_rounding();
     test_spawn();
     test_errors();
     test_alloc_failures();

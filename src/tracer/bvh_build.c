@@ -9,7 +9,8 @@
  * in the order traversal reads them.
  *
  * Cost model of a binary split: a node visit costs MT__BVH_TRAVERSAL_COST
- * triangle tests; a leaf costs its primitive count. A range is a leaf when
+ * triangle tests; a leaf costs its triangles plus MT__BVH_QUADRIC_COST per
+ * quadric. A range is a leaf when
  * it is small enough and no split pays; ranges whose centroids coincide are
  * halved by index; from depth MT__BVH_SAH_DEPTH on the median is taken.
  */
@@ -19,6 +20,9 @@
 
 #define NBINS 16
 #define MT__BVH_TRAVERSAL_COST 3.0
+/* A quadric test (double precision, a square root, clipping) costs about
+ * eight triangle tests: weighted so, two spheres do not share a leaf. */
+#define MT__BVH_QUADRIC_COST 8.0
 
 typedef struct prim {
     mt_real lo[3], hi[3], c[3];
@@ -96,7 +100,8 @@ static void find_split(const prim *p, uint32_t n, const box *cb, double area, in
                        int *bin, double *cost)
 {
     box bins[3][NBINS];
-    uint32_t cnt[3][NBINS], j;
+    double cnt[3][NBINS], total = 0; /* weighted counts */
+    uint32_t j;
     mt_real k[3];
     int a, i;
     *axis = -1;
@@ -109,16 +114,18 @@ static void find_split(const prim *p, uint32_t n, const box *cb, double area, in
             cnt[a][i] = 0;
         }
     }
-    for (j = 0; j < n; ++j)
+    for (j = 0; j < n; ++j) {
+        double w = p[j].quad ? MT__BVH_QUADRIC_COST : 1;
+        total += w;
         for (a = 0; a < 3; ++a) {
             int b = bin_of(p[j].c[a], cb->lo[a], k[a]);
-            cnt[a][b]++;
+            cnt[a][b] += w;
             box_add(&bins[a][b], p[j].lo, p[j].hi);
         }
+    }
     for (a = 0; a < 3; ++a) {
         box acc;
-        double right[NBINS];
-        uint32_t nr = 0, nl = 0;
+        double right[NBINS], nr = 0, nl = 0;
         if (k[a] == 0) continue;
         box_empty(&acc);
         for (i = NBINS - 1; i > 0; --i) {
@@ -131,7 +138,7 @@ static void find_split(const prim *p, uint32_t n, const box *cb, double area, in
             double c;
             box_add(&acc, bins[a][i].lo, bins[a][i].hi);
             nl += cnt[a][i];
-            if (nl == 0 || nl == n) continue;
+            if (nl == 0 || nl == total) continue; /* sums of small integers: exact */
             c = MT__BVH_TRAVERSAL_COST + (box_area(&acc) * nl + right[i + 1]) / area;
             if (c < *cost) {
                 *cost = c;
@@ -162,7 +169,8 @@ static void analyze(builder *b, range *r, uint32_t depth)
     area = box_area(&r->bb);
     if (n > 1 && depth < MT__BVH_SAH_DEPTH && area > 0)
         find_split(p, n, &r->cb, area, &r->axis, &r->bin, &cost);
-    if (n == 1 || (n <= MT__BVH_LEAF_MAX && (r->nquad == 0 || r->nquad == n) && cost >= n)) {
+    if (n == 1 || (n <= MT__BVH_LEAF_MAX && (r->nquad == 0 || r->nquad == n) &&
+                   cost >= (n - r->nquad) + MT__BVH_QUADRIC_COST * r->nquad)) {
         r->how = HOW_LEAF;
     } else if (n <= MT__BVH_LEAF_MAX && r->nquad > 0 && r->nquad < n) {
         r->how = HOW_KIND;
@@ -296,7 +304,8 @@ static void emit_leaf(builder *b, const range *r, mt__bvh_ref *ref)
     ref->count = (uint16_t)n;
     g->stats.leaves++;
     if (n > g->stats.max_leaf_prims) g->stats.max_leaf_prims = n;
-    if (b->root_area > 0) g->stats.sah_cost += n * box_area(&r->bb) / b->root_area;
+    if (b->root_area > 0)
+        g->stats.sah_cost += (p[0].quad ? MT__BVH_QUADRIC_COST : 1) * n * box_area(&r->bb) / b->root_area;
 }
 
 /* One four-wide node from a range that is not a leaf. */

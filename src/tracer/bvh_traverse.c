@@ -25,6 +25,14 @@
 #define USE_SSE 0
 #endif
 
+/* The traversal loop and the tests it calls are inlined into both queries,
+ * so that each is compiled for its own case (GCC and clang). */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE
+#endif
+
 typedef struct trav {
 #if USE_SSE
     __m128 vo[3], vi[3], vf[3]; /* origin, inverse direction, its scaled copy */
@@ -34,6 +42,7 @@ typedef struct trav {
     mt__tri_ray tr;
     mt_real o[3], inv[3], inv_far[3];
     int nx, ny, nz; /* rows of the near planes: 0/1, 2/3, 4/5 by direction sign */
+    size_t off[6];  /* byte offsets in a node of the near x, y, z and far x, y, z rows */
     mt_real exit_scale, prune_scale;
 } trav;
 
@@ -49,6 +58,12 @@ static void trav_init(trav *t, const mt_ray *r)
     t->nx = t->inv[0] < 0 ? 1 : 0;
     t->ny = t->inv[1] < 0 ? 3 : 2;
     t->nz = t->inv[2] < 0 ? 5 : 4;
+    t->off[0] = (size_t)t->nx * sizeof(mt_real[4]);
+    t->off[1] = (size_t)t->ny * sizeof(mt_real[4]);
+    t->off[2] = (size_t)t->nz * sizeof(mt_real[4]);
+    t->off[3] = (size_t)(t->nx ^ 1) * sizeof(mt_real[4]);
+    t->off[4] = (size_t)(t->ny ^ 1) * sizeof(mt_real[4]);
+    t->off[5] = (size_t)(t->nz ^ 1) * sizeof(mt_real[4]);
     /* exit distances scaled by 1 + 2 gamma(3): folded into the inverse
      * (the same number of roundings as scaling each distance) */
     t->exit_scale = 1 + 2 * mt__gamma(3);
@@ -86,15 +101,18 @@ static void trav_init(trav *t, const mt_ray *r)
  * comparisons put it first, and SSE's max and min return their second
  * operand when one is NaN. */
 #if USE_SSE
-static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 tmin, __m128 tmax,
+static inline ALWAYS_INLINE unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 tmin, __m128 tmax,
                                  mt_real tn_out[4])
 {
-    __m128 a = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nx]), t->vo[0]), t->vi[0]);
-    __m128 b = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->ny]), t->vo[1]), t->vi[1]);
-    __m128 c = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nz]), t->vo[2]), t->vi[2]);
-    __m128 d = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nx ^ 1]), t->vo[0]), t->vf[0]);
-    __m128 e = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->ny ^ 1]), t->vo[1]), t->vf[1]);
-    __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(nd->b[t->nz ^ 1]), t->vo[2]), t->vf[2]);
+    const char *base = (const char *)nd->b;
+#define ROW(i) _mm_loadu_ps((const float *)(const void *)(base + t->off[i]))
+    __m128 a = _mm_mul_ps(_mm_sub_ps(ROW(0), t->vo[0]), t->vi[0]);
+    __m128 b = _mm_mul_ps(_mm_sub_ps(ROW(1), t->vo[1]), t->vi[1]);
+    __m128 c = _mm_mul_ps(_mm_sub_ps(ROW(2), t->vo[2]), t->vi[2]);
+    __m128 d = _mm_mul_ps(_mm_sub_ps(ROW(3), t->vo[0]), t->vf[0]);
+    __m128 e = _mm_mul_ps(_mm_sub_ps(ROW(4), t->vo[1]), t->vf[1]);
+    __m128 f = _mm_mul_ps(_mm_sub_ps(ROW(5), t->vo[2]), t->vf[2]);
+#undef ROW
     __m128 n = _mm_max_ps(c, _mm_max_ps(b, _mm_max_ps(a, tmin)));
     __m128 x = _mm_min_ps(f, _mm_min_ps(e, _mm_min_ps(d, tmax)));
     _mm_storeu_ps(tn_out, n);
@@ -103,7 +121,7 @@ static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, __m128 t
 typedef __m128 tbound;
 static tbound to_bound(mt_real v) { return _mm_set1_ps(v); }
 #else
-static inline unsigned node_hits(const trav *t, const mt__bvh_node *nd, mt_real tmin, mt_real tmax,
+static inline ALWAYS_INLINE unsigned node_hits(const trav *t, const mt__bvh_node *nd, mt_real tmin, mt_real tmax,
                                  mt_real tn_out[4])
 {
     const mt_real *nxr = nd->b[t->nx], *fxr = nd->b[t->nx ^ 1];
@@ -146,7 +164,7 @@ static inline int low_bit(unsigned m)
  * lane: the caller then tests the lanes one by one, with the double-precision
  * recomputation of the scalar test. */
 #if USE_SSE
-static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, __m128 tmax,
+static inline ALWAYS_INLINE unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, __m128 tmax,
                                  mt_real tt[4], mt_real b1[4], mt_real b2[4], int *exact)
 {
     const int kx = t->tr.kx, ky = t->tr.ky, kz = t->tr.kz;
@@ -171,6 +189,7 @@ static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, 
     }
     rej = _mm_and_ps(_mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)), _mm_cmplt_ps(e2, zero)),
                      _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero)));
+    if (_mm_movemask_ps(rej) == 15) return 0; /* the ray passes outside all four */
     det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
     rej = _mm_or_ps(rej, _mm_cmpeq_ps(det, zero));
     az = _mm_mul_ps(az, t->ts[2]);
@@ -208,7 +227,7 @@ static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, __m128 tmin, 
     return (unsigned)_mm_movemask_ps(valid);
 }
 #else
-static inline unsigned tri4_hits(const trav *t, const mt__tri4 *q, mt_real tmin, mt_real tmax,
+static inline ALWAYS_INLINE unsigned tri4_hits(const trav *t, const mt__tri4 *q, mt_real tmin, mt_real tmax,
                                  mt_real tt[4], mt_real b1[4], mt_real b2[4], int *exact)
 {
     unsigned m = 0;
@@ -250,9 +269,9 @@ static inline void prefetch_child(const mt_geometry *g, mt__bvh_ref c)
     }
 }
 
-/* Closest hit (any = 0) or any hit (any = 1); the compiler specializes the
- * two calls. */
-static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best *bs)
+/* Closest hit (any = 0) or any hit (any = 1): inlined into both callers so
+ * that each is compiled for its constant. */
+static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, int any, best *bs)
 {
     mt__bvh_ref stack[MT__BVH_STACK], cur = g->root;
     mt_real stack_t[MT__BVH_STACK], tmin = r->tmin, tmax = r->tmax, limit;
@@ -260,6 +279,9 @@ static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best 
     unsigned sp = 0;
     trav t;
     bs->found = 0;
+    bs->t = bs->b1 = bs->b2 = 0;
+    bs->id = 0;
+    bs->quad = 0;
     if (g->stats.prims == 0) return 0;
     trav_init(&t, r);
     {
@@ -285,8 +307,7 @@ static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best 
                         int b = low_bit(mask);
                         mask &= mask - 1;
                         prefetch_child(g, nd->c[b]);
-                        stack[sp] = nd->c[b];
-                        stack_t[sp++] = tn[b];
+                        stack[sp++] = nd->c[b];
                     }
                     cur = nd->c[i0];
                     continue;
@@ -363,6 +384,12 @@ static inline int traverse(const mt_geometry *g, const mt_ray *r, int any, best 
                     vlimit = to_bound(limit);
                 }
             }
+        }
+        if (any) {
+            /* nothing to prune: every stacked child is still in [tmin, tmax] */
+            if (sp == 0) return 0;
+            cur = stack[--sp];
+            continue;
         }
         for (;;) {
             if (sp == 0) return bs->found;

@@ -51,7 +51,8 @@ static int cylinder_point(const mt_shape *s, const mt__oray *r, double t, double
         p[0] *= s->radius / rho;
         p[1] *= s->radius / rho;
     }
-    return !(p[2] < s->zmin || p[2] > s->zmax || mt__phi(p[0], p[1]) > s->phi_max);
+    if (p[2] < s->zmin || p[2] > s->zmax) return 0;
+    return !mt__phi_cut(s) || !(mt__phi(p[0], p[1]) > s->phi_max);
 }
 
 int mt__cylinder_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])

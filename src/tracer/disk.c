@@ -62,7 +62,7 @@ int mt__disk_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
     p[2] = s->height; /* exactly on the plane (pbrt-v3) */
     d2 = p[0] * p[0] + p[1] * p[1];
     if (d2 > rad * rad || d2 < ri * ri) return 0;
-    if (!(p[0] == 0 && p[1] == 0) && mt__phi(p[0], p[1]) > s->phi_max) return 0;
+    if (mt__phi_cut(s) && !(p[0] == 0 && p[1] == 0) && mt__phi(p[0], p[1]) > s->phi_max) return 0;
     *t = th;
     return 1;
 }

@@ -3,6 +3,7 @@
  * ComputeDifferentials) and robust spawning of rays from surfaces (pbrt-v3
  * section 3.9.5, OffsetRayOrigin; ShadowEpsilon = 1e-4).
  */
+#include <string.h>
 #include "tracer/shape_impl.h"
 
 mt_raydiff mt_raydiff_from_ray(const mt_ray *r)
@@ -78,6 +79,28 @@ void mt_surface_differentials(mt_surface *sf, const mt_raydiff *rd)
 
 /* ---- spawning ----------------------------------------------------------------- */
 
+/* The neighbouring mt_real above (up) or below v, by its bits (pbrt-v3's
+ * NextFloatUp/Down, cheaper than nextafter); infinities and NaN stay. */
+#if MT_USE_DOUBLE
+typedef uint64_t real_bits;
+#define TRUE_MIN 0x1p-1074
+#else
+typedef uint32_t real_bits;
+#define TRUE_MIN 0x1p-149f
+#endif
+static mt_real next_real(mt_real v, int up)
+{
+    real_bits b;
+    if (!mt_is_finite(v)) return v;
+    if (v == 0) return up ? TRUE_MIN : -TRUE_MIN;
+    memcpy(&b, &v, sizeof b);
+    /* the bits of a positive value grow with it, a negative one's with -v */
+    if ((v > 0) == (up != 0)) ++b;
+    else --b;
+    memcpy(&v, &b, sizeof b);
+    return v;
+}
+
 mt_vec3 mt_offset_ray_origin(mt_vec3 p, mt_vec3 err, mt_vec3 n, mt_vec3 w)
 {
     mt_real d = mt_fabs(n.x) * err.x + mt_fabs(n.y) * err.y + mt_fabs(n.z) * err.z;
@@ -85,12 +108,9 @@ mt_vec3 mt_offset_ray_origin(mt_vec3 p, mt_vec3 err, mt_vec3 n, mt_vec3 w)
     if (mt_v3_dot(w, n) < 0) off = mt_v3_neg(off);
     po = mt_v3_add(p, off);
     /* round away from p, so that the rounding of the sum cannot undo the offset */
-    if (off.x > 0) po.x = mt__next_toward(po.x, MT_REAL_MAX);
-    else if (off.x < 0) po.x = mt__next_toward(po.x, -MT_REAL_MAX);
-    if (off.y > 0) po.y = mt__next_toward(po.y, MT_REAL_MAX);
-    else if (off.y < 0) po.y = mt__next_toward(po.y, -MT_REAL_MAX);
-    if (off.z > 0) po.z = mt__next_toward(po.z, MT_REAL_MAX);
-    else if (off.z < 0) po.z = mt__next_toward(po.z, -MT_REAL_MAX);
+    if (off.x != 0) po.x = next_real(po.x, off.x > 0);
+    if (off.y != 0) po.y = next_real(po.y, off.y > 0);
+    if (off.z != 0) po.z = next_real(po.z, off.z > 0);
     return po;
 }
 

@@ -110,6 +110,10 @@ void mt__weingarten(const double dpdu[3], const double dpdv[3], const double d2p
                     double dndv[3]);
 /* phi = atan2(y, x) in [0, 2 pi) (pbrt-v2's quadrics). */
 double mt__phi(double x, double y);
+/* Whether phimax cuts anything away: with phimax = 360 degrees (2 pi
+ * rounded up to mt_real) no phi in [0, 2 pi) exceeds it, and the hit tests
+ * skip the atan2. */
+static inline int mt__phi_cut(const mt_shape *s) { return (double)s->phi_max < 6.283185307179586; }
 /* The roots t0 <= t1 of a t^2 + 2 b t + c = 0 given disc4 = b^2 - a c
  * computed by the caller (in a cancellation-free form); 0 when none. */
 int mt__quadratic(double a, double b, double c, double disc4, double *t0, double *t1);

@@ -60,9 +60,10 @@ static int sphere_point(const mt_shape *s, const mt__oray *r, double t, double p
     len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     if (len > 0)
         for (i = 0; i < 3; ++i) p[i] *= rad / len;
+    if ((s->zmin > -rad && p[2] < s->zmin) || (s->zmax < rad && p[2] > s->zmax)) return 0;
+    if (!mt__phi_cut(s)) return 1;
     phi = p[0] == 0 && p[1] == 0 ? 0 : mt__phi(p[0], p[1]);
-    return !((s->zmin > -rad && p[2] < s->zmin) || (s->zmax < rad && p[2] > s->zmax) ||
-             phi > s->phi_max);
+    return !(phi > s->phi_max);
 }
 
 int mt__sphere_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
