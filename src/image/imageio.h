@@ -16,9 +16,11 @@
 #define MT__IMAGE_MAX_SIDE (1 << 24)
 #define MT__IMAGE_MAX_VALUES ((size_t)1 << 29)
 
-mt_status mt__exr_read(const char *path, mt_image *img, mt_error *err);
+/* The readers. mode: the MT_IMAGE_MODE_BITS of mt_image_read_mode (PNG has
+ * none: pbrt-v2 reads no PNG). */
+mt_status mt__exr_read(const char *path, mt_mode mode, mt_image *img, mt_error *err);
 mt_status mt__png_read(const char *path, mt_image *img, mt_error *err);
-mt_status mt__pfm_read(const char *path, mt_image *img, mt_error *err);
+mt_status mt__pfm_read(const char *path, mt_mode mode, mt_image *img, mt_error *err);
 
 /* How an EXR file is written. mt_image_write uses float pixels, ZIP
  * compression, scanlines and a data window at the origin. */
@@ -54,6 +56,9 @@ void mt__tmpfile_abort(mt__tmpfile *t);
  * overflows to infinity as OpenEXR's half does. */
 float mt__half_to_float(uint16_t h);
 uint16_t mt__float_to_half(float f);
+/* f as pbrt-v2's HALF frame buffer holds it (erratum exr-half): rounded to
+ * half, finite values beyond +-65504 saturated there. */
+float mt__float_through_half(float f);
 
 /* Checks a size read from a file: sides in [1, MT__IMAGE_MAX_SIDE] and at
  * most MT__IMAGE_MAX_VALUES values. MT_ERR_FORMAT naming path otherwise. */
