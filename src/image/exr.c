@@ -588,7 +588,13 @@ mt_status mt__exr_write(const char *path, const mt_image *img, const mt_image_at
     w.img = img;
     w.opt = opt;
     w.bpe = opt->pixel_type == EXR_PIXEL_HALF ? 2 : 4;
-    if (img->channels == 1) {
+    if (opt->names) {
+        for (k = 0; k < img->channels; k++)
+            if (opt->names[k]) {
+                w.names[w.nch] = opt->names[k];
+                w.src[w.nch++] = k;
+            }
+    } else if (img->channels == 1) {
         w.nch = 1;
         w.names[0] = "Y";
         w.src[0] = 0;

@@ -29,6 +29,10 @@ typedef struct mt__exr_options {
     int compression;  /* OpenEXR's EXR_COMPRESSION_* */
     int tile_w, tile_h; /* 0: scanline file */
     int x0, y0;       /* the data window's origin */
+    /* NULL: R, G, B (and A), or Y for one channel. Otherwise the name of
+     * each image channel's EXR channel, NULL to leave one out (a Y-and-A
+     * file, a file with no colour channel). */
+    const char *const *names;
 } mt__exr_options;
 void mt__exr_default_options(mt__exr_options *o);
 mt_status mt__exr_write(const char *path, const mt_image *img, const mt_image_attr *attrs,
