@@ -32,15 +32,6 @@
 
 static const char *dir; /* the test's private directory */
 
-static const char *in_dir(const char *name)
-{
-    static char buf[4][512];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-    return buf[k];
-}
-
 /* The half nearest v, ties to even (rint rounds to even in the default
  * rounding mode), finite values beyond +-65504 saturated at +-65504 (where
  * OpenEXR's floatToHalf would give an infinity). */
@@ -128,7 +119,7 @@ static const float tricky[] = {
 
 static void test_exr_half(void)
 {
-    const char *f = in_dir("float.exr"), *u = in_dir("uint.exr");
+    const char *f = t_tmp_path("float.exr"), *u = t_tmp_path("uint.exr");
     mt_image src, a, b, c;
     int k, ok, bad;
     mt_image_alloc(&src, 4, 2, 4, NULL);
@@ -231,8 +222,8 @@ static void test_exr_missing(void)
 {
     static const char *const y_a[] = {"Y", "A", NULL}, *const z_only[] = {"Z", NULL, NULL};
     static const char *const r_only[] = {"R", NULL, NULL};
-    const char *y = in_dir("y.exr"), *ya = in_dir("ya.exr"), *z = in_dir("z.exr"),
-               *r = in_dir("r.exr");
+    const char *y = t_tmp_path("y.exr"), *ya = t_tmp_path("ya.exr"), *z = t_tmp_path("z.exr"),
+               *r = t_tmp_path("r.exr");
     mt_image gray, three, a, b;
     mt_error err;
     int k, ok;
@@ -314,7 +305,7 @@ static int rows_flipped(const mt_image *got, const mt_image *src, float scale)
 
 static void test_pfm_rows(void)
 {
-    const char *p = in_dir("rows.pfm"), *g = in_dir("gray.pfm");
+    const char *p = t_tmp_path("rows.pfm"), *g = t_tmp_path("gray.pfm");
     mt_image src, flip, a, b;
     mt_error err;
     int k, x, y, ok;
@@ -380,7 +371,7 @@ static void test_pfm_rows(void)
 
 static void test_data_window(void)
 {
-    const char *w = in_dir("window.exr");
+    const char *w = t_tmp_path("window.exr");
     mt_image src, a, b;
     int k, ok;
     mt_image_alloc(&src, 5, 3, 3, NULL);
@@ -455,9 +446,9 @@ static void test_texture_path(void)
     for (k = 0; k < 12; k++) c.data[k] = tricky[k + 10]; /* 0.7, 123.456, ... */
     for (k = 0; k < 4; k++) yimg.data[k] = 0.3f + 0.1f * (float)k;
     for (k = 0; k < 12; k++) pfm.data[k] = k < 6 ? 0.2f : 0.9f; /* top row 0.2, bottom 0.9 */
-    ok = write_exr(in_dir("tex.exr"), &c, EXR_PIXEL_FLOAT, NULL, 0, 0) &&
-         write_exr(in_dir("ytex.exr"), &yimg, EXR_PIXEL_FLOAT, NULL, 0, 0) &&
-         mt_image_write(in_dir("tex.pfm"), &pfm, NULL, 0, NULL) == MT_OK;
+    ok = write_exr(t_tmp_path("tex.exr"), &c, EXR_PIXEL_FLOAT, NULL, 0, 0) &&
+         write_exr(t_tmp_path("ytex.exr"), &yimg, EXR_PIXEL_FLOAT, NULL, 0, 0) &&
+         mt_image_write(t_tmp_path("tex.pfm"), &pfm, NULL, 0, NULL) == MT_OK;
     mt_mipmap_cache_clear();
     ok = ok && session("pbrt-v2", &v2) && session("corrected", &fx);
     if (!ok) {
@@ -499,7 +490,7 @@ static void test_texture_path(void)
 
 static void test_cache_keys(void)
 {
-    const char *e = in_dir("tex.exr"), *p = in_dir("tex.pfm");
+    const char *e = t_tmp_path("tex.exr"), *p = t_tmp_path("tex.pfm");
     mt_error err;
     mt_mipmap *a, *b, *c, *d, *pa, *pb;
     mt_rgb ta, tb, td;
