@@ -114,24 +114,31 @@ static void let_go(void)
 
 enum { T = 6 };
 
-static void test_one_key(void)
+/* T threads ask for key at once while the first build is held back: the
+ * others arrive and queue behind it (20 ms makes that likely; the checks
+ * hold either way). */
+static void ask_at_once(job *j, const char *key, int fail)
 {
     pthread_t th[T];
-    job j[T];
-    int k, same = 1, n;
-    reset(0, 1); /* the first build waits until released */
+    int k;
+    reset(fail, 1); /* the first build waits until let go */
     for (k = 0; k < T; k++) {
-        j[k].key = "a";
+        j[k].key = key;
         pthread_create(&th[k], NULL, ask, &j[k]);
     }
-    /* let the others arrive and queue behind the build (20 ms makes that
-     * likely; the check holds either way): they must not build */
     pthread_mutex_lock(&lock);
     WAIT_UNTIL(started >= 1);
     pthread_mutex_unlock(&lock);
     nanosleep(&(struct timespec){0, 20000000}, NULL);
     let_go();
     for (k = 0; k < T; k++) pthread_join(th[k], NULL);
+}
+
+static void test_one_key(void)
+{
+    job j[T];
+    int k, same = 1, n;
+    ask_at_once(j, "a", 0);
     for (k = 0; k < T; k++) same &= j[k].got != NULL && j[k].got == j[0].got;
     n = j[0].got ? ((value *)j[0].got)->refs : -1;
     t_check(same && builds == 1 && n == T + 1 && mt__cache_size(&cache) == 1,
@@ -180,19 +187,9 @@ static void test_two_keys(void)
 
 static void test_failures(void)
 {
-    pthread_t th[T];
     job j[T];
     int k, all = 1;
-    reset(1, 1);
-    for (k = 0; k < T; k++) {
-        j[k].key = "bad";
-        pthread_create(&th[k], NULL, ask, &j[k]);
-    }
-    pthread_mutex_lock(&lock);
-    WAIT_UNTIL(started >= 1);
-    pthread_mutex_unlock(&lock);
-    let_go();
-    for (k = 0; k < T; k++) pthread_join(th[k], NULL);
+    ask_at_once(j, "bad", 1);
     for (k = 0; k < T; k++)
         all &= !j[k].got && j[k].err.status == MT_ERR_IO && strstr(j[k].err.message, "bad") != NULL;
     t_check(all && builds == T && mt__cache_size(&cache) == 0,

@@ -67,13 +67,9 @@ static int printed_as(double got, float want)
 static int write_exr(const char *path, const mt_image *img, int ptype, const char *const *names,
                      int x0, int y0)
 {
-    mt__exr_options o;
+    const mt__exr_options o = {.pixel_type = ptype, .compression = EXR_COMPRESSION_ZIP,
+                               .x0 = x0, .y0 = y0, .names = names};
     mt_error err;
-    mt__exr_default_options(&o);
-    o.pixel_type = ptype;
-    o.names = names;
-    o.x0 = x0;
-    o.y0 = y0;
     if (mt__exr_write(path, img, NULL, 0, &o, &err) == MT_OK) return 1;
     printf("  cannot write %s: %s\n", path, err.message);
     return 0;
