@@ -37,6 +37,9 @@ typedef unsigned mt_mode;
 #define MT_FIX_CHECKER_ONE_SIDED   (1u << 19) /* closed-form checkerboard 0/0 */
 #define MT_FIX_CYLINDRICAL_AXIS    (1u << 20) /* cylindrical mapping NaN on its axis */
 #define MT_FIX_DOTS_INSIDE         (1u << 21) /* dots: "inside" drawn outside the dots */
+#define MT_FIX_EXR_HALF            (1u << 22) /* EXR colour read through half */
+#define MT_FIX_EXR_MISSING_CHANNELS (1u << 23) /* EXR without R, G, B (Y only) reads black */
+#define MT_FIX_PFM_ROWS            (1u << 24) /* PFM rows kept in file order: upside down */
 
 /* Options outside both modes. */
 #define MT_OPT_RADIANCE_TRANSMISSION (1u << 28) /* scale specular transmission by (eta_t/eta_i)^2 */
@@ -47,7 +50,8 @@ typedef unsigned mt_mode;
      MT_FIX_ANISOTROPIC_NORMAL | MT_FIX_GLOSSY_SAMPLE_PDF | MT_FIX_TANGENT_PLANE |          \
      MT_FIX_BSDF_FRAME | MT_FIX_MEASURED_SYMMETRY | MT_FIX_DIELECTRIC_SIDE |                \
      MT_FIX_UBER_OPACITY | MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX | MT_FIX_MAPPING_3D | \
-     MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS | MT_FIX_DOTS_INSIDE)
+     MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS | MT_FIX_DOTS_INSIDE |               \
+     MT_FIX_EXR_HALF | MT_FIX_EXR_MISSING_CHANNELS | MT_FIX_PFM_ROWS)
 
 /* One entry of the errata catalog. bit is 0 for entries that materia fixes in
  * both modes (pbrt-v2 would produce NaN, Inf or memory corruption there). */

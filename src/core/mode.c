@@ -98,6 +98,28 @@ static const mt_erratum errata[] = {
      "parameter first: \"inside\" is drawn around the dots and \"outside\" on them (the "
      "reference values show it)",
      "\"inside\" on the dots, \"outside\" around them"},
+    {"exr-half", MT_FIX_EXR_HALF, "texture", "imageio.cpp ReadImageEXR",
+     "reads R, G and B into a frame buffer of HALF slices, so OpenEXR converts float and uint "
+     "channels to half (ImfConvert.cpp floatToHalf, uintToHalf: round to nearest even, "
+     "relative change up to 2^-11; finite values beyond 65504 become infinite); materia "
+     "saturates those at +-65504, the largest half, so that no infinity is made",
+     "the stored precision (float and uint channels read exactly)"},
+    {"exr-missing-channels", MT_FIX_EXR_MISSING_CHANNELS, "texture",
+     "imageio.cpp ReadImageEXR",
+     "only the channels R, G and B are read, each missing one filled with 0: a luminance "
+     "(Y-only) file, or one with no R, G or B at all, reads black",
+     "Y alone is gray (Y, Y, Y); a file with none of R, G, B and Y is an error"},
+    {"pfm-rows", MT_FIX_PFM_ROWS, "texture", "imageio.cpp ReadImagePFM",
+     "keeps the rows in file order, but PFM stores them bottom to top: the image is upside "
+     "down relative to the same picture as EXR (row y of the texture is the file's row "
+     "height - 1 - y); pbrt-v2's own PFM writer writes bottom to top, so reading its output "
+     "back flips it",
+     "the file's first row is the image's bottom row, as the format says"},
+    {"exr-data-window", 0, "texture", "imageio.cpp ReadImageEXR",
+     "the frame buffer's slices start at the pixel buffer without subtracting the data "
+     "window's origin, so a data window not at (0, 0) makes OpenEXR write outside the buffer "
+     "(undefined behaviour)",
+     "the data window is read as the image wherever it lies (both modes)"},
     {"mix-overflow", 0, "material", "mixmat.cpp MixMaterial::GetBSDF",
      "a mix whose two materials have more than 8 BxDFs between them writes past the BSDF's "
      "array (its Assert is compiled out in release builds)",
