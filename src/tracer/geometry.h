@@ -37,6 +37,7 @@
 
 #include <stdint.h>
 #include "materia/diffgeom.h"
+#include "materia/mode.h"
 #include "materia/params.h"
 #include "materia/parser.h"
 #include "materia/transform.h"
@@ -91,9 +92,14 @@ typedef enum mt_shape_kind {
 
 typedef struct mt_shape mt_shape;
 
+/* Zero-initialize (or memset) before filling: a zero mode is pbrt-v2's. */
 typedef struct mt_shape_options {
     mt_warning_fn warn; /* pbrt-v2's warnings (extra uvs, discarded uvs); may be NULL */
     void *warn_ctx;
+    /* The geometry errata the shape fixes (the MT_FIX_* bits of the
+     * "geometry" layer, include/materia/mode.h; others are ignored): the
+     * shape keeps its mode, and every query on it answers in that mode. */
+    mt_mode mode;
 } mt_shape_options;
 
 /* A shape of pbrt-v2 type `type` ("sphere", "disk", "cylinder",
@@ -123,11 +129,11 @@ mt_shape *mt_shape_from_statement(const mt_statement *st, const mt_transform *o2
 
 /* A triangle mesh from arrays (indices: 3 per triangle; N, S, uv may be
  * NULL), as pbrt-v2's TriangleMesh constructor takes them: P, N, S in object
- * space. The arrays are copied. */
+ * space. The arrays are copied. opt may be NULL (pbrt-v2 mode). */
 mt_shape *mt_shape_create_mesh(const mt_transform *o2w, int reverse_orientation, int ntris,
                                const int *indices, int nverts, const mt_vec3 *P,
                                const mt_vec3 *N, const mt_vec3 *S, const mt_real *uv,
-                               mt_error *err);
+                               const mt_shape_options *opt, mt_error *err);
 
 void mt_shape_destroy(mt_shape *s);
 
@@ -137,6 +143,8 @@ uint32_t mt_shape_prim_count(const mt_shape *s);
 /* pbrt-v2's ReverseOrientation ^ TransformSwapsHandedness (mt_diffgeom.flip). */
 int mt_shape_flip(const mt_shape *s);
 int mt_shape_reverse_orientation(const mt_shape *s);
+/* The mode the shape was created in (mt_shape_options.mode). */
+mt_mode mt_shape_mode(const mt_shape *s);
 const mt_transform *mt_shape_object_to_world(const mt_shape *s);
 /* World bounds of one primitive (conservative). */
 void mt_shape_prim_bounds(const mt_shape *s, uint32_t prim, mt_vec3 *lo, mt_vec3 *hi);

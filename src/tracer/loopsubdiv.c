@@ -14,6 +14,12 @@
  * (not normalized, as pbrt-v2 passes it) and the same vertex and triangle
  * order as pbrt-v2's Refine.
  *
+ * Erratum loop-normals (MT_FIX_LOOP_NORMALS): pbrt-v2 (and pbrt-v3) apply
+ * the tangent masks to the one-ring after every vertex has been pushed to
+ * its limit position; the masks give the limit tangents only when applied
+ * to the control points, and the normals come out a few degrees off the
+ * limit surface's. Corrected mode applies them to the control points.
+ *
  * pbrt-v2 walks faces through neighbour pointers and would loop or crash on
  * meshes that are not 2-manifold; materia refuses, naming the problem: an
  * edge shared by more than two triangles, two triangles that traverse a
@@ -356,7 +362,11 @@ static mt_status build_limit(mt_shape *s, sd_mesh *m, mt_error *err)
         else if (m->v[i].boundary) ok = weight_boundary(m, i, (mt_real)1 / 5, &Pl[i]);
         else ok = weight_one_ring(m, i, loop_gamma(valence(m, i)), &Pl[i]);
     }
-    for (i = 0; ok && i < m->nv; ++i) m->v[i].P = Pl[i];
+    /* pbrt-v2 pushes every vertex to its limit position before it applies
+     * the tangent masks, which are meant for the control points (erratum
+     * loop-normals); corrected mode applies them first */
+    if (!(s->mode & MT_FIX_LOOP_NORMALS))
+        for (i = 0; ok && i < m->nv; ++i) m->v[i].P = Pl[i];
     for (i = 0; ok && i < m->nv; ++i) {
         if (m->v[i].start < 0) N[i] = mt_v3(0, 0, 0);
         else ok = limit_normal(m, i, &N[i]);
