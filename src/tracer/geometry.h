@@ -24,7 +24,10 @@
  *
  * Shapes keep pbrt-v2's parameterisations, partial derivatives and normal
  * orientation (sphere, disk, cylinder, trianglemesh and loopsubdiv, which
- * becomes a triangle mesh). Intersection is more careful than pbrt-v2's:
+ * becomes a triangle mesh), pbrt-v2's geometry errata included unless the
+ * shape's mode (mt_shape_options.mode) fixes them: loop-normals,
+ * disk-partials, normal-derivatives, triangle-facing (hits and shading),
+ * and the sampling ones below. Intersection is more careful than pbrt-v2's:
  * quadrics are solved in double precision in object space, triangles with
  * the watertight test of Woop, Benthin and Wald (JCGT 2013), and every hit
  * carries a conservative bound on the error of its point (pbrt-v3, section
@@ -225,30 +228,45 @@ mt_ray mt_surface_spawn_to(const mt_surface *sf, mt_vec3 p);
 /* A shadow ray between two surface points (both ends offset). */
 mt_ray mt_surface_spawn_between(const mt_surface *from, const mt_surface *to);
 
-/* ---- sampling, for area lights (pbrt-v2 Shape and ShapeSet) ------------------ */
+/* ---- sampling, for area lights (pbrt-v2 Shape and ShapeSet) ------------------
+ * In pbrt-v2 mode these are pbrt-v2's, errata included; the shape's mode
+ * fixes them (include/materia/mode.h, the geometry layer: partial-sampling,
+ * quadric-scale, triangle-facing, shapeset-hit). */
 
 /* Area of one primitive (pbrt-v2 Shape::Area: object-space for quadrics,
- * world-space for triangles). */
+ * world-space for triangles, in both modes). */
 mt_real mt_shape_area(const mt_shape *s, uint32_t prim);
 /* pbrt-v2 Shape::Sample(u1, u2, &Ns): a point on the primitive and its
- * normal *ns (negated under ReverseOrientation only, as pbrt-v2 does). */
+ * normal *ns (for triangles, negated under ReverseOrientation only in
+ * pbrt-v2 mode; as a hit's normal with triangle-facing fixed). pbrt-v2's
+ * sphere and disk cover the full shape whatever their clipping; with
+ * partial-sampling fixed, the clipped shape, uniformly in object area. */
 mt_vec3 mt_shape_sample(const mt_shape *s, uint32_t prim, mt_real u1, mt_real u2, mt_vec3 *ns);
 /* pbrt-v2 Shape::Sample(p, u1, u2, &Ns): for a sphere seen from outside, a
  * direction uniform in the cone it subtends and the point where it meets the
- * sphere; otherwise as mt_shape_sample. */
+ * sphere; otherwise as mt_shape_sample. With partial-sampling fixed, a cone
+ * direction that misses a clipped sphere gives a zero *ns (no emission; its
+ * pdf is 0). With quadric-scale fixed the cone has the world radius, and a
+ * sphere under a transform that is not a similarity is area-sampled (and,
+ * with shapeset-hit fixed, moved to the first point of the ray from p
+ * through the sample, as ShapeSet does). */
 mt_vec3 mt_shape_sample_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_real u1, mt_real u2,
                              mt_vec3 *ns);
 /* pbrt-v2 Shape::Pdf(p, wi) (solid angle, wi unit): the cone pdf for a
  * sphere seen from outside; otherwise distance^2 / (|cos| area) at the
  * primitive's hit by the ray (p, wi, tmin 1e-3), 0 when it misses or the
- * value is not finite. */
+ * value is not finite. Fixed: the cone only for directions that meet a
+ * clipped sphere (partial-sampling); the world density of a quadric
+ * (quadric-scale); every point of a quadric along the ray, summed
+ * (shapeset-hit). */
 mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 wi);
 
 /* pbrt-v2 ShapeSet: every primitive of the shape, one chosen with
  * probability proportional to its area (ucomp) and sampled with (u1, u2).
  * _from samples as seen from p and, as pbrt-v2 does, returns the point where
  * the ray from p towards the sample meets the last primitive of the set
- * that it meets (tmin 1e-3), with that primitive's normal. */
+ * that it meets (tmin 1e-3), with that primitive's normal; the closest one
+ * with shapeset-hit fixed. */
 mt_real mt_shape_total_area(const mt_shape *s);
 mt_vec3 mt_shape_set_sample(const mt_shape *s, mt_real ucomp, mt_real u1, mt_real u2,
                             mt_vec3 *ns);
