@@ -146,6 +146,19 @@ static d3 fd_nv(const fd_shape *f, double u, double v)
 
 static d3 sphere_par_fn(const void *s, double u, double v) { return sphere_p(s, u, v); }
 
+#define PARTIAL_SPHERE "Shape \"sphere\" \"float radius\" 1.5 \"float zmin\" -1 \"float zmax\" 1.2 \"float phimax\" 290"
+/* The parameterisation of PARTIAL_SPHERE under xf, for finite differences. */
+static void partial_sphere(sphere_par *sp, fd_shape *f, const mt_transform *xf)
+{
+    sp->r = 1.5;
+    sp->thmin = acos(-1 / 1.5);
+    sp->thmax = acos(1.2 / 1.5);
+    sp->phimax = 290 * PI_D / 180;
+    f->par = sp;
+    f->p = sphere_par_fn;
+    f->o2w = xf;
+}
+
 /* Aims rays at points of known (u, v) and compares everything the hit gives. */
 static void check_param_hits(const char *name, mt_shape *s, const fd_shape *f, int n,
                              double umin, double umax, double vmin, double vmax, int check_dn)
@@ -269,17 +282,9 @@ static void test_sphere_params(void)
     mt_transform xf = placement(1);
     sphere_par sp;
     fd_shape f;
-    mt_shape *s = must_shape("Shape \"sphere\" \"float radius\" 1.5 \"float zmin\" -1 "
-                             "\"float zmax\" 1.2 \"float phimax\" 290",
-                             &xf, 0);
+    mt_shape *s = must_shape(PARTIAL_SPHERE, &xf, 0);
     if (!s) return;
-    sp.r = 1.5;
-    sp.thmin = acos(-1 / 1.5);
-    sp.thmax = acos(1.2 / 1.5);
-    sp.phimax = 290 * PI_D / 180;
-    f.par = &sp;
-    f.p = sphere_par_fn;
-    f.o2w = &xf;
+    partial_sphere(&sp, &f, &xf);
     check_param_hits("sphere (partial, rotated)", s, &f, 3000, 0.02, 0.98, 0.02, 0.98, 1);
     mt_shape_destroy(s);
 }
@@ -810,17 +815,9 @@ static void test_normal_derivatives(void)
 
     sc = mt_scale(1.3f, 0.6f, 2.1f);
     xf = mt_transform_compose(&rot, &sc);
-    s = must_shape_mode("Shape \"sphere\" \"float radius\" 1.5 \"float zmin\" -1 "
-                        "\"float zmax\" 1.2 \"float phimax\" 290",
-                        &xf, 1, MT_FIX_NORMAL_DERIVATIVES);
+    s = must_shape_mode(PARTIAL_SPHERE, &xf, 1, MT_FIX_NORMAL_DERIVATIVES);
     if (!s) goto done;
-    sp.r = 1.5;
-    sp.thmin = acos(-1 / 1.5);
-    sp.thmax = acos(1.2 / 1.5);
-    sp.phimax = 290 * PI_D / 180;
-    f.par = &sp;
-    f.p = sphere_par_fn;
-    f.o2w = &xf;
+    partial_sphere(&sp, &f, &xf);
     check_param_hits("ellipsoid (Scale 1.3 0.6 2.1, reversed) with normal-derivatives fixed", s,
                      &f, 2000, 0.02, 0.98, 0.02, 0.98, 1);
     mir = mt_scale(-1.5f, 1, 0.7f);
