@@ -59,7 +59,7 @@ static mt_geometry *soup(uint64_t seed, int n, int quadrics, mt_error *err)
             idx[3 * i + k] = (i % 4 == 3 && k < 2) ? 3 * (i - 1) + k : 3 * i + k;
         }
     }
-    s = mt_shape_create_mesh(&id, 0, n, idx, 3 * n, P, NULL, NULL, NULL, err);
+    s = mt_shape_create_mesh(&id, 0, n, idx, 3 * n, P, NULL, NULL, NULL, NULL, err);
     free(P);
     free(idx);
     if (!g || !s || mt_geometry_attach(g, s, err) != MT_OK) goto fail;
@@ -309,7 +309,7 @@ static void test_degenerate(void)
         mt_bvh_stats st;
         for (i = 0; i < 3 * n; ++i) idx[i] = i % 3;
         g = mt_geometry_create();
-        s = mt_shape_create_mesh(&id, 0, n, idx, 3, P, NULL, NULL, NULL, &err);
+        s = mt_shape_create_mesh(&id, 0, n, idx, 3, P, NULL, NULL, NULL, NULL, &err);
         free(idx);
         ok = g && s && mt_geometry_attach(g, s, &err) == MT_OK && mt_geometry_commit(g, &err) == MT_OK;
         r = mt_ray_make(mt_v3(0.2f, 0.2f, 1), mt_v3(0, 0, -1), 0, MT_RAY_TMAX);

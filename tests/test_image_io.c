@@ -22,15 +22,6 @@
 
 static const char *dir; /* the test's private directory */
 
-static const char *in_dir(const char *name)
-{
-    static char buf[8][512];
-    static int k;
-    k = (k + 1) % 8;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-    return buf[k];
-}
-
 static int count_entries(void)
 {
     DIR *d = opendir(dir);
@@ -49,7 +40,7 @@ static void clear_dir(void)
     struct dirent *e;
     if (!d) return;
     while ((e = readdir(d)))
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) unlink(in_dir(e->d_name));
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) unlink(t_tmp_path(e->d_name));
     closedir(d);
 }
 
@@ -203,7 +194,7 @@ static void exr_round_trip(const char *name, int w, int h, int nc, int ptype, in
     mt__exr_options o;
     mt_image img, want;
     mt_error err;
-    const char *path = in_dir("rt.exr");
+    const char *path = t_tmp_path("rt.exr");
     size_t i;
     mt__exr_default_options(&o);
     o.pixel_type = ptype;
@@ -244,7 +235,7 @@ static void test_exr_round_trips(void)
         fill_image(&img, 37, 23, nc, (unsigned)nc);
         snprintf(name, sizeof name, "exr: float round trip, %d channel(s)", nc);
         mt_error_clear(&err);
-        check_read_back(in_dir("pub.exr"), mt_image_write(in_dir("pub.exr"), &img, NULL, 0, &err),
+        check_read_back(t_tmp_path("pub.exr"), mt_image_write(t_tmp_path("pub.exr"), &img, NULL, 0, &err),
                         &err, &img, name);
         mt_image_free(&img);
     }
@@ -280,7 +271,7 @@ static void test_exr_header(void)
     const exr_attr_chlist_t *chl = NULL;
     const char *v1 = NULL, *v2 = NULL;
     int32_t n1 = 0, n2 = 0;
-    const char *path = in_dir("attr.exr");
+    const char *path = t_tmp_path("attr.exr");
     int ok, k, floats = 1;
     fill_image(&img, 8, 4, 3, 5);
     mt_error_clear(&err);
@@ -473,7 +464,7 @@ static void test_png_kinds(void)
     static const unsigned char trns[] = {255, 0, 128};
     /* 16-bit RGB, 1 x 1 */
     static const unsigned char rgb16[] = {0, 0x12, 0x34, 0xff, 0xff, 0x00, 0x01};
-    const char *path = in_dir("kind.png");
+    const char *path = t_tmp_path("kind.png");
     mt_image img;
 #define LIN(k) mt_srgb_to_linear((float)(k) / 255.f)
     if (read_built(path, make_png(3, 2, 1, 0, g1, sizeof g1, NULL, 0, NULL, 0), &img,
@@ -516,7 +507,7 @@ static void test_png_kinds(void)
 /* Writer and reader: every 8-bit code, and 16-bit codes, come back exactly. */
 static void test_png_round_trips(void)
 {
-    const char *path = in_dir("rt.png");
+    const char *path = t_tmp_path("rt.png");
     mt_image img, want;
     mt_error err;
     int nc, k, bits;
@@ -594,7 +585,7 @@ static void put_float(bytes *b, float v, int little)
 
 static void test_pfm(void)
 {
-    const char *path = in_dir("t.pfm");
+    const char *path = t_tmp_path("t.pfm");
     mt_image img, got;
     mt_error err;
     bytes b = {NULL, 0};
@@ -657,7 +648,7 @@ static int read_fails_cleanly(const char *path)
 /* A file that must be rejected, with the path named in the message. */
 static void expect_rejected(const char *name, const char *file, const void *data, size_t n)
 {
-    const char *path = in_dir(file);
+    const char *path = t_tmp_path(file);
     write_bytes(path, data, n);
     t_check(read_fails_cleanly(path), name, "accepted, or the error does not name the file");
     unlink(path);
@@ -669,7 +660,7 @@ static void expect_rejected(const char *name, const char *file, const void *data
 static int mangle(const unsigned char *good, size_t n, const char *file, int *rejected,
                   int *cuts_rejected, int *tries)
 {
-    const char *path = in_dir(file);
+    const char *path = t_tmp_path(file);
     unsigned char *buf = malloc(n);
     mt_rng rng;
     size_t cut;
@@ -723,8 +714,8 @@ static void mangle_check(const char *name, const char *file, int *rejected_out)
     unsigned char *good;
     size_t n;
     int bad, rejected = 0, cuts = 0, tries = 0;
-    good = read_bytes(in_dir(file), &n);
-    unlink(in_dir(file));
+    good = read_bytes(t_tmp_path(file), &n);
+    unlink(t_tmp_path(file));
     bad = good ? mangle(good, n, file, &rejected, &cuts, &tries) : 1;
     t_check(bad == 0 && cuts == 20, name,
             "%d of %d reads failed without naming the file; %d of 20 cut files rejected", bad,
@@ -747,7 +738,7 @@ static void test_corrupt(void)
     for (f = 0; f < 3; f++) {
         char file[32], name[96];
         snprintf(file, sizeof file, "mangled.%s", fmt[f]);
-        mt_image_write(in_dir(file), &img, NULL, 0, NULL);
+        mt_image_write(t_tmp_path(file), &img, NULL, 0, NULL);
         snprintf(name, sizeof name, "%s: cut and flipped files give errors naming the file",
                  fmt[f]);
         mangle_check(name, file, NULL);
@@ -756,12 +747,12 @@ static void test_corrupt(void)
     mt__exr_default_options(&o);
     o.tile_w = o.tile_h = 8;
     o.pixel_type = 1;
-    mt__exr_write(in_dir("tiled.exr"), &img, NULL, 0, &o, NULL);
+    mt__exr_write(t_tmp_path("tiled.exr"), &img, NULL, 0, &o, NULL);
     mangle_check("exr: cut and flipped tiled half files give errors naming the file",
                  "tiled.exr", NULL);
     o.tile_w = o.tile_h = 0;
     o.compression = 0;
-    mt__exr_write(in_dir("raw.exr"), &img, NULL, 0, &o, NULL);
+    mt__exr_write(t_tmp_path("raw.exr"), &img, NULL, 0, &o, NULL);
     mangle_check("exr: cut and flipped uncompressed files give errors naming the file",
                  "raw.exr", NULL);
     mt_image_free(&img);
@@ -793,14 +784,14 @@ static void test_corrupt(void)
         expect_rejected("png: zero size", "zero.png", p.p, p.n);
         free(p.p);
     }
-    t_check(read_fails_cleanly(in_dir("missing.exr")) && read_fails_cleanly(in_dir("missing.png")) &&
-                read_fails_cleanly(in_dir("missing.pfm")),
+    t_check(read_fails_cleanly(t_tmp_path("missing.exr")) && read_fails_cleanly(t_tmp_path("missing.png")) &&
+                read_fails_cleanly(t_tmp_path("missing.pfm")),
             "missing files give errors naming the file", "no");
     {
         mt_error err;
         mt_image im;
         mt_error_clear(&err);
-        t_check(mt_image_read(in_dir("x.tga"), &im, &err) == MT_ERR_UNSUPPORTED,
+        t_check(mt_image_read(t_tmp_path("x.tga"), &im, &err) == MT_ERR_UNSUPPORTED,
                 "unknown extension is unsupported", "status %d", (int)err.status);
     }
 }

@@ -293,6 +293,24 @@ static void test_ztest_by_hand(void)
     ok = mt_imgcmp_ztest(&a, &va, &b, NULL, NULL, &r, NULL, &err) == MT_OK;
     t_check(ok && r.pass, "z-test by hand: d = 0.02 (z = 2) passes", "min p %g", r.min_p);
     t_near(r.min_p, erfc(2 / sqrt(2.0)), 1e-5, "z-test by hand: min p = erfc(2 / sqrt 2)");
+    /* rounding-level variance (a sky in a mirror: identical samples, float
+     * accumulation): deterministic, compared within exact_rel = 1e-4 */
+    {
+        mt_image a3 = t_image_make(4, 4, 3, 0.32f), b3 = t_image_make(4, 4, 3, 0.32000002f),
+                 v3 = t_image_make(4, 4, 3, 1e-18f), c3 = t_image_make(4, 4, 3, 0.3201f);
+        ok = mt_imgcmp_ztest(&a3, &v3, &b3, &v3, NULL, &r, NULL, &err) == MT_OK;
+        t_check(ok && r.pass && r.exact == 3 && r.tests == 0,
+                "z-test by hand: a rounding-level variance is no z-test (1 ulp apart passes)",
+                "pass %d exact %ld tests %ld max z %g", r.pass, r.exact, r.tests, r.max_abs_z);
+        ok = mt_imgcmp_ztest(&a3, &v3, &c3, &v3, NULL, &r, NULL, &err) == MT_OK;
+        t_check(ok && !r.pass && r.exact_mismatch == 3,
+                "z-test by hand: a rounding-level variance with means 3e-4 apart fails as a mismatch",
+                "pass %d mismatches %ld", r.pass, r.exact_mismatch);
+        mt_image_free(&a3);
+        mt_image_free(&b3);
+        mt_image_free(&v3);
+        mt_image_free(&c3);
+    }
     /* 64 blocks of z = 1: no block is beyond 3.7 (Sidak over 192 tests) but
      * the global test sums them: bias_z = 64 / sqrt 64 = 8 */
     {

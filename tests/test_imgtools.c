@@ -20,15 +20,6 @@
 static const char *dir;   /* the test's private directory */
 static char bindir[1024]; /* where the tools are */
 
-static const char *in_dir(const char *name)
-{
-    static char buf[8][1100];
-    static int k;
-    k = (k + 1) % 8;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-    return buf[k];
-}
-
 /* The largest |difference| between a pixel's first three channels and rgb. */
 static double off(const mt_image *img, int x, int y, const float *rgb)
 {
@@ -43,7 +34,7 @@ static void check_png(const char *name, int w, int h, int x, int y, const float 
 {
     mt_image back;
     mt_error err;
-    if (mt_image_read(in_dir(name), &back, &err) != MT_OK) {
+    if (mt_image_read(t_tmp_path(name), &back, &err) != MT_OK) {
         t_fail(check, "%s", err.message);
         return;
     }
@@ -58,7 +49,7 @@ static void check_written(const char *name, const mt_image *img, int x, int y, c
                           const char *check)
 {
     mt_error err;
-    if (mt_image_write(in_dir(name), img, NULL, 0, &err) != MT_OK)
+    if (mt_image_write(t_tmp_path(name), img, NULL, 0, &err) != MT_OK)
         t_fail(check, "%s", err.message);
     else
         check_png(name, img->width, img->height, x, y, want, check);
@@ -251,7 +242,7 @@ static void test_sheet(void)
 static int holds(const char *name, const char *text)
 {
     static char buf[8192];
-    FILE *f = fopen(in_dir(name), "r");
+    FILE *f = fopen(t_tmp_path(name), "r");
     size_t n;
     if (!f) return 0;
     n = fread(buf, 1, sizeof buf - 1, f);
@@ -278,7 +269,7 @@ static void tool(const char *name, const char *toolname, const char *args, int w
 static int write_image(const char *name, const mt_image *img)
 {
     mt_error err;
-    if (mt_image_write(in_dir(name), img, NULL, 0, &err) == MT_OK) return 1;
+    if (mt_image_write(t_tmp_path(name), img, NULL, 0, &err) == MT_OK) return 1;
     t_fail("tools: test images", "%s", err.message);
     return 0;
 }

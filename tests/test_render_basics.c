@@ -539,6 +539,191 @@ static void test_area_lights(void)
     mt_paramset_destroy(ps);
 }
 
+/* ---- geometry errata seen through an area light ---------------------------------- */
+
+/* Light sampling of an area light of radiance 1 seen from p, as direct
+ * lighting does it but without BSDF and cosine: E[V Li / pdf], where V is
+ * the shadow ray against the light's own primitives (a sample hidden
+ * behind the light itself counts 0). Unbiased, it equals the solid angle
+ * in which p sees the light emitting towards it: *ref, from uniform
+ * directions and the normal of their first hit. *pdf_diff: the largest
+ * relative difference between Sample_L's pdf and Pdf of the same direction
+ * over the visible samples. */
+static void light_estimate(const mt__light *l, mt_vec3 p, acc *est, acc *ref, double *pdf_diff)
+{
+    const mt_shape *s = l->shape;
+    uint32_t n = mt_shape_prim_count(s), k;
+    mt_rng rng;
+    mt_vec3 cone_x, cone_y, cone_z;
+    mt_real cone_ct;
+    double omega;
+    int i;
+    mt_rng_seed(&rng, 17, 3);
+    *pdf_diff = 0;
+    for (i = 0; i < 30000; ++i) {
+        mt__light_sample ls;
+        mt_real u0 = mt_rng_uniform(&rng), u1 = mt_rng_uniform(&rng), u2 = mt_rng_uniform(&rng);
+        int hidden = 0;
+        mt__light_sample_l(l, NULL, p, u0, u1, u2, &ls);
+        if (!(ls.pdf > 0) || mt_rgb_is_black(ls.Li)) {
+            acc_add(est, 0);
+            continue;
+        }
+        for (k = 0; k < n && !hidden; ++k) hidden = mt_shape_occluded(s, k, &ls.shadow);
+        acc_add(est, hidden ? 0 : ls.Li.c[0] / ls.pdf);
+        if (!hidden)
+            *pdf_diff = fmax(*pdf_diff, fabs(mt__light_pdf(l, p, ls.wi) - ls.pdf) / ls.pdf);
+    }
+    /* the reference: uniform directions in a cone about the shape's
+     * bounding sphere when p is outside it, else over the whole sphere */
+    {
+        mt_vec3 lo, hi, blo, bhi, c, ax;
+        double R, d, ct = -1;
+        mt_shape_prim_bounds(s, 0, &lo, &hi);
+        for (k = 1; k < n; ++k) {
+            mt_shape_prim_bounds(s, k, &blo, &bhi);
+            lo = mt_v3(mt_min(lo.x, blo.x), mt_min(lo.y, blo.y), mt_min(lo.z, blo.z));
+            hi = mt_v3(mt_max(hi.x, bhi.x), mt_max(hi.y, bhi.y), mt_max(hi.z, bhi.z));
+        }
+        c = mt_v3_scale(mt_v3_add(lo, hi), (mt_real)0.5);
+        R = 0.5 * mt_v3_len(mt_v3_sub(hi, lo)) * 1.01;
+        d = mt_v3_len(mt_v3_sub(c, p));
+        if (d > R) ct = sqrt(1 - R * R / (d * d));
+        ax = d > 0 ? mt_v3_normalize(mt_v3_sub(c, p)) : mt_v3(0, 0, 1);
+        mt_coordinate_system(ax, &lo, &hi);
+        omega = 2 * PI_D * (1 - ct);
+        cone_ct = (mt_real)ct;
+        cone_x = lo, cone_y = hi, cone_z = ax;
+    }
+    for (i = 0; i < 60000; ++i) {
+        mt_vec3 w = mt_uniform_sample_cone_frame(mt_rng_uniform(&rng), mt_rng_uniform(&rng),
+                                                 cone_ct, cone_x, cone_y, cone_z);
+        mt_ray r = mt_ray_make(p, w, (mt_real)1e-3, MT_RAY_TMAX);
+        mt_hit h, best;
+        mt_surface sf;
+        int hit = 0;
+        for (k = 0; k < n; ++k)
+            if (mt_shape_intersect(s, k, &r, &h)) {
+                best = h;
+                r.tmax = h.t;
+                hit = 1;
+            }
+        if (hit) mt_hit_surface(&best, &r, &sf);
+        acc_add(ref, hit && mt_v3_dot(sf.dg.n, mt_v3_neg(w)) > 0 ? omega : 0);
+    }
+}
+
+static int estimate_agrees(const acc *est, const acc *ref)
+{
+    double se = sqrt(acc_se(est) * acc_se(est) + acc_se(ref) * acc_se(ref));
+    return fabs(acc_mean(est) - acc_mean(ref)) <= 5 * se + 1e-4 * acc_mean(ref);
+}
+
+typedef struct light_case {
+    const char *erratum, *what, *shape;
+    double place[6]; /* Translate x y z, then Scale x y z */
+    int ro;
+    mt_real p[3];
+    mt_mode bit;
+    int hidden;
+} light_case;
+
+static mt_transform placed(const double a[6])
+{
+    mt_transform t = mt_translate(mt_v3((mt_real)a[0], (mt_real)a[1], (mt_real)a[2]));
+    mt_transform sc = mt_scale((mt_real)a[3], (mt_real)a[4], (mt_real)a[5]);
+    return mt_transform_compose(&t, &sc);
+}
+
+/* One erratum seen through a light: in pbrt-v2 mode the estimate is biased
+ * (reproduced: an expected failure with its measured size); with the
+ * erratum's bit alone and in corrected mode it is unbiased and Sample_L's
+ * pdf is Pdf's. A case marked `hidden` is an erratum the light does not
+ * show: unbiased in pbrt-v2 mode too. */
+static void check_light_erratum(const light_case *c)
+{
+    mt_mode modes[3];
+    mt_paramset *ps = mt_paramset_create();
+    mt_transform xf = placed(c->place);
+    mt_vec3 p = mt_v3(c->p[0], c->p[1], c->p[2]);
+    char nm[200];
+    int m;
+    modes[0] = MT_MODE_PBRT_V2;
+    modes[1] = c->bit;
+    modes[2] = MT_MODE_CORRECTED;
+    for (m = 0; m < 3; ++m) {
+        mt_error err;
+        mt__light l;
+        acc est = {0, 0, 0}, ref = {0, 0, 0};
+        double pdf_diff = 0;
+        mt_shape *s = t_shape_mode(c->shape, &xf, c->ro, modes[m], NULL, &err);
+        if (!s || mt__area_light_create(&l, "area", ps, s, &err) != MT_OK) {
+            t_fail(c->what, "%s", err.message);
+            mt_shape_destroy(s);
+            continue;
+        }
+        light_estimate(&l, p, &est, &ref, &pdf_diff);
+        if (m == 0 && c->hidden) {
+            snprintf(nm, sizeof nm, "light %s: unbiased in pbrt-v2 mode (erratum %s hidden)",
+                     c->what, c->erratum);
+            t_check(estimate_agrees(&est, &ref), nm, "%.5g +- %.2g against %.5g +- %.2g",
+                    acc_mean(&est), acc_se(&est), acc_mean(&ref), acc_se(&ref));
+        } else if (m == 0) {
+            snprintf(nm, sizeof nm, "light %s: pbrt-v2's bias reproduced", c->what);
+            t_check(!estimate_agrees(&est, &ref), nm, "%.5g +- %.2g against %.5g +- %.2g",
+                    acc_mean(&est), acc_se(&est), acc_mean(&ref), acc_se(&ref));
+            snprintf(nm, sizeof nm, "light %s", c->what);
+            t_xfail(nm, "erratum %s: light sampling gives %.3f times the light seen (%.4g sr of %.4g)",
+                    c->erratum, acc_mean(&est) / acc_mean(&ref), acc_mean(&est), acc_mean(&ref));
+        } else {
+            snprintf(nm, sizeof nm, "light %s: unbiased %s", c->what,
+                     m == 1 ? "with its bit" : "in corrected mode");
+            t_check(estimate_agrees(&est, &ref) && pdf_diff < 1e-3, nm,
+                    "%.5g +- %.2g against %.5g +- %.2g, pdf differs by %.3g", acc_mean(&est),
+                    acc_se(&est), acc_mean(&ref), acc_se(&ref), pdf_diff);
+        }
+        mt_shape_destroy(s);
+    }
+    mt_paramset_destroy(ps);
+}
+
+#define OCTAHEDRON                                                                     \
+    "Shape \"trianglemesh\" \"point P\" [1 0 0 -1 0 0 0 1 0 0 -1 0 0 0 1 0 0 -1] "   \
+    "\"integer indices\" [0 2 4 2 1 4 1 3 4 3 0 4 2 0 5 1 2 5 3 1 5 0 3 5]"
+
+static void test_light_errata(void)
+{
+    static const light_case cases[] = {
+        {"partial-sampling", "hemisphere dome (ReverseOrientation) seen from inside",
+         "Shape \"sphere\" \"float radius\" 2 \"float zmin\" 0", {0, 0, 0, 1, 1, 1}, 1,
+         {0.3f, -0.2f, 0.4f}, MT_FIX_PARTIAL_SAMPLING, 0},
+        {"partial-sampling", "annulus sector (innerradius 0.5 of 1, phimax 270)",
+         "Shape \"disk\" \"float radius\" 1 \"float innerradius\" 0.5 \"float phimax\" 270",
+         {0, 0, 2, 1, 1, 1}, 1, {0.1f, 0.2f, 0}, MT_FIX_PARTIAL_SAMPLING, 0},
+        {"partial-sampling", "half sphere (phimax 180) seen from outside",
+         "Shape \"sphere\" \"float phimax\" 180", {0.2, 0.1, 3, 1, 1, 1}, 0, {0, 0, 0},
+         MT_FIX_PARTIAL_SAMPLING, 0},
+        {"quadric-scale", "sphere under Scale 2 seen from outside", "Shape \"sphere\"",
+         {0, 0, 5, 2, 2, 2}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
+        {"quadric-scale", "disk under Scale 2", "Shape \"disk\" \"float radius\" 0.7",
+         {0, 0, 3, 2, 2, 2}, 1, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
+        {"quadric-scale", "ellipsoid (Scale 2 2 1) seen from outside", "Shape \"sphere\"",
+         {0, 0, 4, 2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
+        {"quadric-scale", "cylinder under Scale 2 seen from its axis (ReverseOrientation)",
+         "Shape \"cylinder\"", {0, 0, 0, 2, 2, 2}, 1, {0, 0.1f, 0.3f}, MT_FIX_QUADRIC_SCALE, 0},
+        {"shapeset-hit", "closed mesh (octahedron) seen from above", OCTAHEDRON,
+         {0.3, 0.2, -3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_SHAPESET_HIT, 0},
+        {"shapeset-hit", "cylinder seen from outside", "Shape \"cylinder\"", {0, 3, 0, 1, 1, 1}, 0,
+         {0, 0, 0}, MT_FIX_SHAPESET_HIT, 0},
+        /* Sample() ignores the mirror, but ShapeSet's re-intersection
+         * replaces its normal with the hit's */
+        {"triangle-facing", "mirrored octahedron (Scale -1 1 1) seen from below", OCTAHEDRON,
+         {0.3, 0.2, 3, -1, 1, 1}, 0, {0, 0, 0}, MT_FIX_TRIANGLE_FACING, 1},
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) check_light_erratum(&cases[i]);
+}
+
 /* The infinite light: E[1/pdf] = 4 pi; Sample_L's pdf equals Pdf; Pdf
  * integrates to one; importance sampling estimates the map's integral
  * (against a dense quadrature of Le) with far less variance than uniform
@@ -695,6 +880,7 @@ int main(void)
     test_crop_window();
     test_sampler();
     test_area_lights();
+    test_light_errata();
     test_infinite_lights();
     test_delta_lights();
     return t_status();

@@ -80,12 +80,16 @@ static mt_transform placement(double scale)
     return b;
 }
 
-static mt_shape *must_shape(const char *text, const mt_transform *o2w, int ro)
+static mt_shape *must_shape_mode(const char *text, const mt_transform *o2w, int ro, mt_mode mode)
 {
     mt_error err;
-    mt_shape *s = t_shape(text, o2w, ro, NULL, &err);
+    mt_shape *s = t_shape_mode(text, o2w, ro, mode, NULL, &err);
     if (!s) t_fail(text, "creation failed: %s", err.message);
     return s;
+}
+static mt_shape *must_shape(const char *text, const mt_transform *o2w, int ro)
+{
+    return must_shape_mode(text, o2w, ro, MT_MODE_PBRT_V2);
 }
 
 /* ---- sphere ------------------------------------------------------------------------ */
@@ -149,12 +153,14 @@ static void check_param_hits(const char *name, mt_shape *s, const fd_shape *f, i
         mt_ray r;
         mt_hit h;
         mt_surface sf;
+        d3 side;
         if (mt_shape_flip(s)) nrm = dscale(nrm, -1);
-        /* come from the side the geometric normal points to, at least 25
-         * degrees above the tangent plane: q is then the first hit of a
-         * convex piece */
-        if (ddot(w, nrm) < 0) w = dscale(w, -1);
-        if (ddot(w, nrm) < 0.42) w = dnorm(dadd(w, nrm));
+        /* come from the side the geometric normal points to (before
+         * ReverseOrientation: outside), at least 25 degrees above the
+         * tangent plane: q is then the first hit of a convex piece */
+        side = mt_shape_reverse_orientation(s) ? dscale(nrm, -1) : nrm;
+        if (ddot(w, side) < 0) w = dscale(w, -1);
+        if (ddot(w, side) < 0.42) w = dnorm(dadd(w, side));
         o = dadd(q, dscale(w, dist));
         r = mt_ray_make(rv(o), rv(dscale(w, -1)), 0, MT_RAY_TMAX);
         if (!mt_shape_intersect(s, 0, &r, &h)) {
@@ -175,7 +181,10 @@ static void check_param_hits(const char *name, mt_shape *s, const fd_shape *f, i
         if (e > worst_d) worst_d = e;
         if (e > 1e3 * FD_TOL) bad_d++;
         if (check_dn) {
-            d3 nu = fd_nu(f, u, v), nv = fd_nv(f, u, v);
+            /* dg.n is the parameterisation's normal negated when the shape
+             * flips it, and so are its derivatives */
+            double sg = mt_shape_flip(s) ? -1 : 1;
+            d3 nu = dscale(fd_nu(f, u, v), sg), nv = dscale(fd_nv(f, u, v), sg);
             double floor = fmax(dlen(nu), fmax(dlen(nv), 1e-2));
             e = fmax(dlen(dsub(dv(sf.dg.dndu), nu)), dlen(dsub(dv(sf.dg.dndv), nv))) / floor;
             if (e > worst_dn) worst_dn = e;
@@ -344,10 +353,23 @@ static void test_disk(void)
         worst_v = fmax(worst_v, fabs(dlen(pbrt_v) / dlen(pv) - 1));
     }
     t_check(bad == 0, "disk (annulus, partial): pbrt-v2's dpdu, dpdv, (u, v), n = +z", "%d bad", bad);
-    t_xfail("disk dpdu", "pbrt-v2 scales dpdu by phimax / 2 pi: |dpdu| off by %.3g for phimax 200",
-            worst_u);
-    t_xfail("disk dpdv", "pbrt-v2's dpdv is exact only without a hole: |dpdv| off by up to %.3g "
-            "for innerradius 0.5 of 2", worst_v);
+    t_check(worst_u > 0.4 && worst_v > 1, "disk (annulus, partial): pbrt-v2's partials are not "
+            "the parameterisation's", "off by %.3g and %.3g", worst_u, worst_v);
+    t_xfail("disk dpdu", "erratum disk-partials: pbrt-v2 scales dpdu by phimax / 2 pi: |dpdu| off "
+            "by %.3g for phimax 200", worst_u);
+    t_xfail("disk dpdv", "erratum disk-partials: pbrt-v2's dpdv is exact only without a hole: "
+            "|dpdv| off by up to %.3g for innerradius 0.5 of 2", worst_v);
+    mt_shape_destroy(s);
+    /* corrected: the derivatives of the parameterisation, rotated and scaled */
+    xf = placement(1.5);
+    dp.h = 0.3;
+    f.o2w = &xf;
+    s = must_shape_mode("Shape \"disk\" \"float radius\" 2 \"float innerradius\" 0.5 "
+                        "\"float phimax\" 200 \"float height\" 0.3",
+                        &xf, 0, MT_FIX_DISK_PARTIALS);
+    if (!s) return;
+    check_param_hits("disk (annulus, partial, scaled) with disk-partials fixed", s, &f, 2000, 0.01,
+                     0.99, 0.01, 0.99, 0);
     mt_shape_destroy(s);
 }
 
@@ -628,6 +650,91 @@ static void test_triangle_orientation(void)
     }
 }
 
+#define OCTAHEDRON                                                                     \
+    "Shape \"trianglemesh\" \"point P\" [1 0 0 -1 0 0 0 1 0 0 -1 0 0 0 1 0 0 -1] "   \
+    "\"integer indices\" [0 2 4 2 1 4 1 3 4 3 0 4 2 0 5 1 2 5 3 1 5 0 3 5]"
+
+/* Triangles of a shape whose sampled normal (Shape::Sample) points to the
+ * other side than the normal of a hit at the sampled point. */
+static int sample_hit_disagreements(mt_shape *s)
+{
+    uint32_t k;
+    int bad = 0;
+    for (k = 0; k < mt_shape_prim_count(s); ++k) {
+        mt_vec3 ns, p = mt_shape_sample(s, k, (mt_real)0.3, (mt_real)0.6, &ns), o;
+        mt_surface sf;
+        int ok;
+        /* from outside the octahedron (centred on the origin) */
+        o = mt_v3_scale(p, 3);
+        sf = hit_surface_of(s, k, o, mt_v3_sub(p, o), &ok);
+        if (!ok || mt_v3_dot(sf.dg.n, ns) < 0) bad++;
+    }
+    return bad;
+}
+
+/* Erratum triangle-facing: the side a triangle faces in pbrt-v2 depends on
+ * its uv map (degenerate or mirrored), Sample() ignores a mirroring
+ * transform, and "S" without "N" flips the shading normal twice; corrected,
+ * the winding's normal negated under ReverseOrientation xor a mirror, for
+ * hits, samples and shading alike. */
+static void test_triangle_facing(void)
+{
+    const char *degen = "Shape \"trianglemesh\" \"integer indices\" [0 1 2] \"point P\" [0 0 0 1 0 0 0 1 0] "
+                        "\"float uv\" [0.5 0.5 0.5 0.5 0.5 0.5]";
+    const char *mirror_uv = "Shape \"trianglemesh\" \"integer indices\" [0 1 2] \"point P\" [0 0 0 1 0 0 0 1 0] "
+                            "\"float uv\" [0 0 0 1 1 0]";
+    const char *s_only = "Shape \"trianglemesh\" \"integer indices\" [0 1 2] \"point P\" [0 0 0 1 0 0 0 1 0] "
+                         "\"vector S\" [1 0.1 0 1 0 0 1 -0.1 0]";
+    mt_transform mir = mt_scale(-1, 1, 1), mir2 = mt_scale(1, -2, 1);
+    mt_mode fix = MT_FIX_TRIANGLE_FACING;
+    int m, bad[2][2], ok;
+    double nz[2][3];
+    for (m = 0; m < 2; ++m) {
+        mt_shape *a = must_shape_mode(degen, NULL, 0, m ? fix : 0);
+        mt_shape *b = must_shape_mode(mirror_uv, NULL, 0, m ? fix : 0);
+        mt_shape *c = must_shape_mode(s_only, NULL, 1, m ? fix : 0);
+        mt_shape *o1 = must_shape_mode(OCTAHEDRON, &mir, 0, m ? fix : 0);
+        mt_shape *o2 = must_shape_mode(OCTAHEDRON, &mir2, 1, m ? fix : 0);
+        mt_surface sf;
+        mt_diffgeom sh;
+        nz[m][0] = nz[m][1] = nz[m][2] = 0;
+        bad[m][0] = bad[m][1] = -1;
+        if (!a || !b || !c || !o1 || !o2) goto next;
+        sf = hit_surface_of(a, 0, mt_v3(0.2f, 0.3f, 1), mt_v3(0, 0, -1), &ok);
+        nz[m][0] = ok ? sf.dg.n.z : 0;
+        sf = hit_surface_of(b, 0, mt_v3(0.2f, 0.3f, 1), mt_v3(0, 0, -1), &ok);
+        nz[m][1] = ok ? sf.dg.n.z : 0;
+        sf = hit_surface_of(c, 0, mt_v3(0.2f, 0.3f, 1), mt_v3(0, 0, -1), &ok);
+        mt_surface_shading(&sf, &sh);
+        nz[m][2] = ok ? sh.n.z * sf.dg.n.z : 0;
+        bad[m][0] = sample_hit_disagreements(o1);
+        bad[m][1] = sample_hit_disagreements(o2);
+    next:
+        mt_shape_destroy(a);
+        mt_shape_destroy(b);
+        mt_shape_destroy(c);
+        mt_shape_destroy(o1);
+        mt_shape_destroy(o2);
+    }
+    t_check(fabs(nz[0][0] + 1) < TOL && fabs(nz[0][1] + 1) < TOL && fabs(nz[0][2] + 1) < TOL &&
+                bad[0][0] == 8 && bad[0][1] == 8,
+            "triangle facing: pbrt-v2's -z for degenerate and mirrored uvs, shading normal against "
+            "the hit's with S only, sampled normals against hits' under mirrors",
+            "n.z %g %g, shading %g, %d and %d of 8 sampled normals disagree", nz[0][0], nz[0][1],
+            nz[0][2], bad[0][0], bad[0][1]);
+    t_xfail("triangle facing", "erratum triangle-facing: a triangle with degenerate or mirrored "
+            "uvs faces against its winding; with S only and ReverseOrientation the shading normal "
+            "is opposite to the hit's; under a mirror all %d of 8 sampled normals (octahedron) "
+            "point to the other side than its hits' (the area light's ShapeSet re-intersection "
+            "hides it, see test_render_basics)", bad[0][0]);
+    t_check(fabs(nz[1][0] - 1) < TOL && fabs(nz[1][1] - 1) < TOL && fabs(nz[1][2] - 1) < TOL &&
+                bad[1][0] == 0 && bad[1][1] == 0,
+            "triangle facing with triangle-facing fixed: the winding's side for every uv map, the "
+            "shading normal on the hit's side, sampled normals as hits'",
+            "n.z %g %g, shading %g, %d and %d of 8 sampled normals disagree", nz[1][0], nz[1][1],
+            nz[1][2], bad[1][0], bad[1][1]);
+}
+
 static void test_quadric_orientation(void)
 {
     mt_transform mir = mt_scale(1, -1, 1);
@@ -657,23 +764,137 @@ static void test_quadric_orientation(void)
     }
 }
 
-static void test_dndu_scaled(void)
+/* Erratum normal-derivatives. pbrt-v2 transforms dndu, dndv as normals
+ * (the inverse transpose): under Scale 2 that is half the derivative of the
+ * world unit normal, and under ReverseOrientation, which negates n, the
+ * derivatives keep their sign. Corrected: the derivatives of dg.n, against
+ * finite differences of the parameterisation's unit normal under
+ * non-uniform scales, ReverseOrientation and mirrors. */
+static void test_normal_derivatives(void)
 {
-    /* pbrt-v2 transforms dndu as a normal (inverse transpose): under Scale 2
-     * that is half the derivative of the world unit normal */
-    mt_transform s2 = mt_scale(2, 2, 2);
-    mt_shape *s = must_shape("Shape \"sphere\"", &s2, 0);
-    int ok;
-    mt_surface sf;
-    double ratio;
-    if (!s) return;
+    mt_transform s2 = mt_scale(2, 2, 2), xf, mir, sc, rot = mt_rotate(37, mt_v3(1, 2, 3));
+    mt_shape *s = must_shape("Shape \"sphere\"", &s2, 0), *r = must_shape("Shape \"sphere\"", NULL, 1);
+    sphere_par sp;
+    cyl_par cp = {0.8, -0.5, 1.5, 300 * PI_D / 180};
+    fd_shape f;
+    int ok, ok2;
+    mt_surface sf, sr;
+    double ratio, sign;
+    if (!s || !r) goto done;
     sf = hit_surface_of(s, 0, mt_v3(0.5f, 0.4f, 5), mt_v3(0, 0, -1), &ok);
-    /* true: dndu = dpdu / 2 (radius 2); pbrt-v2: dpdu / 4 */
+    sr = hit_surface_of(r, 0, mt_v3(0.5f, 0.4f, 5), mt_v3(0, 0, -1), &ok2);
+    /* true: dndu = dpdu / 2 (radius 2); pbrt-v2: dpdu / 4. Reversed, true
+     * dndu = -dpdu; pbrt-v2: +dpdu */
     ratio = ok ? dlen(dv(sf.dg.dndu)) / dlen(dv(sf.dg.dpdu)) : 0;
-    t_check(ok && fabs(ratio - 0.25) < 1e3 * TOL, "sphere under Scale 2: pbrt-v2's dndu = M^-T dndu",
-            "|dndu|/|dpdu| = %g", ratio);
-    t_xfail("sphere dndu under scale", "pbrt-v2's dndu is %.3g of the unit normal's derivative "
-            "under Scale 2", ratio / 0.5);
+    sign = ok2 ? ddot(dv(sr.dg.dndu), dv(sr.dg.dpdu)) / (dlen(dv(sr.dg.dndu)) * dlen(dv(sr.dg.dpdu))) : 0;
+    t_check(fabs(ratio - 0.25) < 1e3 * TOL && fabs(sign - 1) < 1e3 * TOL,
+            "sphere: pbrt-v2's dndu = M^-T dndu, not negated with n", "|dndu|/|dpdu| = %g, cos %g",
+            ratio, sign);
+    t_xfail("sphere dndu under scale", "erratum normal-derivatives: pbrt-v2's dndu is %.3g of the "
+            "unit normal's derivative under Scale 2, and %+.0f times it under ReverseOrientation",
+            ratio / 0.5, -sign);
+    mt_shape_destroy(s);
+    mt_shape_destroy(r);
+    s = r = NULL;
+
+    sc = mt_scale(1.3f, 0.6f, 2.1f);
+    xf = mt_transform_compose(&rot, &sc);
+    s = must_shape_mode("Shape \"sphere\" \"float radius\" 1.5 \"float zmin\" -1 "
+                        "\"float zmax\" 1.2 \"float phimax\" 290",
+                        &xf, 1, MT_FIX_NORMAL_DERIVATIVES);
+    if (!s) goto done;
+    sp.r = 1.5;
+    sp.thmin = acos(-1 / 1.5);
+    sp.thmax = acos(1.2 / 1.5);
+    sp.phimax = 290 * PI_D / 180;
+    f.par = &sp;
+    f.p = sphere_par_fn;
+    f.o2w = &xf;
+    check_param_hits("ellipsoid (Scale 1.3 0.6 2.1, reversed) with normal-derivatives fixed", s,
+                     &f, 2000, 0.02, 0.98, 0.02, 0.98, 1);
+    mir = mt_scale(-1.5f, 1, 0.7f);
+    xf = mt_transform_compose(&rot, &mir);
+    r = must_shape_mode("Shape \"cylinder\" \"float radius\" 0.8 \"float zmin\" 1.5 "
+                        "\"float zmax\" -0.5 \"float phimax\" 300",
+                        &xf, 0, MT_FIX_NORMAL_DERIVATIVES);
+    if (!r) goto done;
+    f.par = &cp;
+    f.p = cyl_par_fn;
+    check_param_hits("cylinder (mirrored, scaled) with normal-derivatives fixed", r, &f, 2000, 0.02,
+                     0.98, 0.02, 0.98, 1);
+done:
+    mt_shape_destroy(s);
+    mt_shape_destroy(r);
+}
+
+/* The shading normal of the test mesh below at barycentrics (b1, b2) =
+ * (u, v), in double: sigma A N(b) / |A N(b)| with A the inverse transpose
+ * of xf and sigma = -1 when the shape flips its normals. */
+static d3 shading_normal(const mt_transform *xf, double sigma, double b1, double b2)
+{
+    d3 N = dadd(dadd(dscale(D3(0, 0, 1), 1 - b1 - b2), dscale(D3(0.6, 0, 0.8), b1)),
+                dscale(D3(0, 0.6, 0.8), b2));
+    const double(*mi)[4] = xf->minv.m;
+    d3 w = D3(mi[0][0] * N.x + mi[1][0] * N.y + mi[2][0] * N.z,
+              mi[0][1] * N.x + mi[1][1] * N.y + mi[2][1] * N.z,
+              mi[0][2] * N.x + mi[1][2] * N.y + mi[2][2] * N.z);
+    return dscale(dnorm(w), sigma);
+}
+
+/* Erratum normal-derivatives, shading part: pbrt-v2's dndu, dndv are the
+ * vertex normals' affine map (the unnormalized interpolated normal's
+ * derivatives, as normals); corrected, the derivatives of the shading
+ * normal itself, against finite differences of it (u = b1, v = b2 here),
+ * under a non-uniform scale with ReverseOrientation. */
+static void check_shading_dndu(void)
+{
+    static const char *mesh = "Shape \"trianglemesh\" \"integer indices\" [0 1 2] "
+                              "\"point P\" [0 0 0 1 0 0 0 1 0] "
+                              "\"normal N\" [0 0 1  0.6 0 0.8  0 0.6 0.8] \"float uv\" [0 0 1 0 0 1]";
+    mt_transform rot = mt_rotate(25, mt_v3(1, -1, 2)), sc = mt_scale(2, 0.5f, 1.5f);
+    mt_transform xf = mt_transform_compose(&rot, &sc), id = mt_transform_identity();
+    mt_shape *s = must_shape_mode(mesh, &xf, 1, MT_FIX_NORMAL_DERIVATIVES);
+    int i, bad = 0, ok;
+    double worst = 0, worst_v2 = 0, h = 1e-6;
+    mt_rng rng;
+    if (!s) return;
+    mt_rng_seed(&rng, 19, 2);
+    for (i = 0; i < 300; ++i) {
+        double b1 = 0.9 * urand(&rng), b2 = (1 - b1) * urand(&rng);
+        d3 q = xf_point(&xf, D3(b1, b2, 0)), o = xf_point(&xf, D3(b1, b2, 1));
+        d3 nu = dscale(dsub(shading_normal(&xf, -1, b1 + h, b2), shading_normal(&xf, -1, b1 - h, b2)), 0.5 / h);
+        d3 nv = dscale(dsub(shading_normal(&xf, -1, b1, b2 + h), shading_normal(&xf, -1, b1, b2 - h)), 0.5 / h);
+        mt_diffgeom sh;
+        mt_surface sf = hit_surface_of(s, 0, rv(o), rv(dsub(q, o)), &ok);
+        double e;
+        if (!ok) {
+            bad++;
+            continue;
+        }
+        mt_surface_shading(&sf, &sh);
+        e = fmax(drel(dv(sh.dndu), nu, 1e-2), drel(dv(sh.dndv), nv, 1e-2));
+        e = fmax(e, drel(dv(sh.n), shading_normal(&xf, -1, b1, b2), 1));
+        worst = fmax(worst, e);
+        if (e > 1e3 * TOL) bad++;
+    }
+    t_check(bad == 0, "shading dndu, dndv: the shading normal's derivatives (normal-derivatives "
+            "fixed; scaled, reversed)", "%d bad, worst %.3g", bad, worst);
+    mt_shape_destroy(s);
+    /* pbrt-v2's, identity transform: the unnormalized normal's derivatives */
+    s = must_shape(mesh, &id, 0);
+    if (!s) return;
+    for (i = 0; i < 300; ++i) {
+        double b1 = 0.9 * urand(&rng), b2 = (1 - b1) * urand(&rng);
+        d3 nu = dscale(dsub(shading_normal(&id, 1, b1 + h, b2), shading_normal(&id, 1, b1 - h, b2)), 0.5 / h);
+        mt_diffgeom sh;
+        mt_surface sf = hit_surface_of(s, 0, mt_v3((mt_real)b1, (mt_real)b2, 1), mt_v3(0, 0, -1), &ok);
+        if (!ok) continue;
+        mt_surface_shading(&sf, &sh);
+        worst_v2 = fmax(worst_v2, drel(dv(sh.dndu), nu, 1e-2));
+    }
+    t_xfail("shading dndu", "erratum normal-derivatives: pbrt-v2's shading dndu is off the shading "
+            "normal's derivative by up to %.0f%% (unit vertex normals 37 degrees apart, no "
+            "transform)", 100 * worst_v2);
     mt_shape_destroy(s);
 }
 
@@ -714,6 +935,7 @@ static void test_shading(void)
     }
     t_check(bad == 0, "shading: interpolated N and S, ts = ss x ns, dndu from N",
             "%d bad, worst %.3g", bad, worst);
+    check_shading_dndu();
     {
         mt_diffgeom sh;
         mt_surface sf = hit_surface_of(plain, 0, mt_v3(0.1f, 0.2f, 3), mt_v3(0, 0, -1), &ok);
@@ -1224,8 +1446,9 @@ int main(void)
     test_clipping();
     test_triangle_uv();
     test_triangle_orientation();
+    test_triangle_facing();
     test_quadric_orientation();
-    test_dndu_scaled();
+    test_normal_derivatives();
     test_shading();
     test_differentials();
     test_sampling();

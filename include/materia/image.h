@@ -20,6 +20,7 @@
 #define MATERIA_IMAGE_H
 
 #include "materia/error.h"
+#include "materia/mode.h"
 
 typedef struct mt_image {
     int width, height;
@@ -32,8 +33,29 @@ MT_API mt_status mt_image_alloc(mt_image *img, int width, int height, int channe
                                 mt_error *err);
 MT_API void mt_image_free(mt_image *img);
 
-/* Reads .exr, .png or .pfm (by extension, case-insensitive). */
+/* Reads .exr, .png or .pfm (by extension, case-insensitive) as described
+ * above: the file's own values (mt_image_read_mode with every fix). Tools
+ * and comparisons of images use this. */
 MT_API mt_status mt_image_read(const char *path, mt_image *img, mt_error *err);
+
+/* The mode bits that change how a file is decoded; the reader ignores the
+ * others. */
+#define MT_IMAGE_MODE_BITS (MT_FIX_EXR_HALF | MT_FIX_EXR_MISSING_CHANNELS | MT_FIX_PFM_ROWS)
+
+/* Reads a file as the image textures of the given mode see it (the image
+ * map cache reads with this). pbrt-v2's ReadImage (core/imageio.cpp) gives,
+ * for each bit left out of mode:
+ *   MT_FIX_EXR_HALF: EXR R, G and B (and Y) rounded to half, as its HALF
+ *     frame buffer holds them; finite values beyond +-65504 saturate there
+ *     (OpenEXR would make them infinite);
+ *   MT_FIX_EXR_MISSING_CHANNELS: only R, G and B are read, a missing one as
+ *     0: a Y-only file is black RGB, and a file with none of R, G, B is
+ *     black rather than an error;
+ *   MT_FIX_PFM_ROWS: PFM rows in file order, i.e. the picture upside down.
+ * Alpha, PNG and the data window are read the same way in every mode.
+ * mt_image_read(p, i, e) is mt_image_read_mode(p, MT_MODE_CORRECTED, i, e). */
+MT_API mt_status mt_image_read_mode(const char *path, mt_mode mode, mt_image *img,
+                                    mt_error *err);
 
 /* A string attribute for the file's header (EXR only; ignored elsewhere). */
 typedef struct mt_image_attr {

@@ -98,7 +98,7 @@ typedef struct mt_ztest_result {
     int pass;            /* min_p > threshold, every |bias_z| < bias_z_threshold
                             and no exact mismatch */
     long tests;          /* m: block-channel pairs with a variance, each a z-test */
-    long exact;          /* block-channel pairs where both variances are 0 */
+    long exact;          /* block-channel pairs without sampling noise (see below) */
     long exact_mismatch; /* of these, the pairs whose means differ (see above) */
     double threshold;    /* Sidak: 1 - (1 - alpha)^(1/m); alpha when m = 0 */
     double z_threshold;  /* |z| at which p = threshold */
@@ -141,11 +141,13 @@ typedef struct mt_ztest_result {
  * at 16 samples per pixel and 4x4 blocks the measured false-alarm rate is
  * 1.2% for alpha = 1% (5000 trials of tests/test_imgcmp.c's scene).
  *
- * A block-channel pair with va + vb = 0 (pure background: every sample of
- * both images identical) is not a z-test: the means must be equal within
- * exact_rel * max(|ma|, |mb|) -- float accumulation of identical samples
- * drifts by less than 1e-4 over 2^12 samples -- and a mismatch fails the
- * image whatever the p-values. Such pairs are not counted in m.
+ * A block-channel pair with va + vb = 0, or with sqrt(va + vb) at most
+ * exact_rel * max(|ma|, |mb|) (pure background, or a sky seen in a mirror:
+ * every sample identical, the variance only float rounding), is not a
+ * z-test: the means must be equal within exact_rel * max(|ma|, |mb|) --
+ * float accumulation of identical samples drifts by less than 1e-4 over
+ * 2^12 samples -- and a mismatch fails the image whatever the p-values.
+ * Such pairs are not counted in m.
  *
  * zmap, when not NULL, receives the z of every pair as a blocks_x x
  * blocks_y image with one or three channels: 0 for a matching exact pair,

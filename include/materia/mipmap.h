@@ -57,11 +57,16 @@ MT_API mt_rgb mt_mipmap_lookup(const mt_mipmap *m, mt_real s, mt_real t, mt_real
 /* The process-wide cache of image maps (pbrt-v2 imagemap.cpp GetTexture):
  * the pyramid for an image file read and converted as pbrt-v2's
  * ImageTexture does, made once per process for each key (path as given,
- * trilinear, maxaniso, wrap, scale, gamma, float_texture, mode) and shared.
- * Texels are pow(scale * rgb, gamma) per component for an RGB texture and
- * pow(scale * y(rgb), gamma) for a float texture (float_texture != 0; y() is
- * mt_rgb_y); a one-channel file is gray RGB first. The image is read with
- * mt_image_read (.exr, .png, .pfm). The pyramid belongs to the cache: never
+ * trilinear, maxaniso, wrap, scale, gamma, float_texture, and the bits of
+ * mode that change the pyramid: MT_FIX_TRILINEAR_WIDTH and
+ * MT_IMAGE_MODE_BITS) and shared. Texels are pow(scale * rgb, gamma) per
+ * component for an RGB texture and pow(scale * y(rgb), gamma) for a float
+ * texture (float_texture != 0; y() is mt_rgb_y); a one-channel file is gray
+ * RGB first. The image is read with mt_image_read_mode(path, mode) (.exr,
+ * .png, .pfm): in pbrt-v2 mode as pbrt-v2's ReadImage reads it (EXR colour
+ * through half, Y-only EXR black, PFM upside down). Concurrent requests for
+ * one key read the file once; different keys are read at the same time.
+ * The pyramid belongs to the cache: never
  * destroy it; it stays valid until mt_mipmap_cache_clear. Thread-safe.
  * Returns NULL with err filled when the file cannot be read (pbrt-v2 prints
  * an error and uses a 1x1 texture of value pow(scale, gamma) instead: a

@@ -30,6 +30,13 @@ typedef unsigned mt_mode;
 /* Material layer */
 #define MT_FIX_DIELECTRIC_SIDE     (1u << 8)  /* FresnelDielectric(1.5, 1) in plastic & co */
 #define MT_FIX_UBER_OPACITY        (1u << 9)  /* opacity > 1: negative transmission */
+/* Geometry layer (the tracer's shapes) */
+#define MT_FIX_LOOP_NORMALS        (1u << 10) /* limit normals from the pushed one-ring */
+#define MT_FIX_DISK_PARTIALS       (1u << 11) /* disk dpdu * phimax/2pi; dpdv wrong with a hole */
+#define MT_FIX_NORMAL_DERIVATIVES  (1u << 12) /* dndu, dndv not the derivatives of n */
+#define MT_FIX_TRIANGLE_FACING     (1u << 13) /* triangle normal side: uvs, Sample, S only */
+#define MT_FIX_PARTIAL_SAMPLING    (1u << 14) /* sphere/disk Sample ignore zmin/zmax/phimax/hole */
+#define MT_FIX_QUADRIC_SCALE       (1u << 15) /* quadric area and cone radius in object space */
 /* Texture layer */
 #define MT_FIX_TRILINEAR_WIDTH     (1u << 16) /* trilinear MIP filter at twice the width */
 #define MT_FIX_MARBLE_INDEX        (1u << 17) /* marble reads one past its table */
@@ -37,6 +44,12 @@ typedef unsigned mt_mode;
 #define MT_FIX_CHECKER_ONE_SIDED   (1u << 19) /* closed-form checkerboard 0/0 */
 #define MT_FIX_CYLINDRICAL_AXIS    (1u << 20) /* cylindrical mapping NaN on its axis */
 #define MT_FIX_DOTS_INSIDE         (1u << 21) /* dots: "inside" drawn outside the dots */
+/* Image reading (pbrt-v2 ReadImage) */
+#define MT_FIX_EXR_HALF            (1u << 22) /* EXR colour read through half */
+#define MT_FIX_EXR_MISSING_CHANNELS (1u << 23) /* EXR without R, G, B (Y only) reads black */
+#define MT_FIX_PFM_ROWS            (1u << 24) /* PFM rows kept in file order: upside down */
+/* Geometry layer, continued */
+#define MT_FIX_SHAPESET_HIT        (1u << 25) /* ShapeSet keeps the last hit; pdf counts one */
 
 /* Options outside both modes. */
 #define MT_OPT_RADIANCE_TRANSMISSION (1u << 28) /* scale specular transmission by (eta_t/eta_i)^2 */
@@ -47,14 +60,18 @@ typedef unsigned mt_mode;
      MT_FIX_ANISOTROPIC_NORMAL | MT_FIX_GLOSSY_SAMPLE_PDF | MT_FIX_TANGENT_PLANE |          \
      MT_FIX_BSDF_FRAME | MT_FIX_MEASURED_SYMMETRY | MT_FIX_DIELECTRIC_SIDE |                \
      MT_FIX_UBER_OPACITY | MT_FIX_TRILINEAR_WIDTH | MT_FIX_MARBLE_INDEX | MT_FIX_MAPPING_3D | \
-     MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS | MT_FIX_DOTS_INSIDE)
+     MT_FIX_CHECKER_ONE_SIDED | MT_FIX_CYLINDRICAL_AXIS | MT_FIX_DOTS_INSIDE |               \
+     MT_FIX_EXR_HALF | MT_FIX_EXR_MISSING_CHANNELS | MT_FIX_PFM_ROWS |                      \
+     MT_FIX_LOOP_NORMALS | MT_FIX_DISK_PARTIALS | MT_FIX_NORMAL_DERIVATIVES |                \
+     MT_FIX_TRIANGLE_FACING | MT_FIX_PARTIAL_SAMPLING | MT_FIX_QUADRIC_SCALE |               \
+     MT_FIX_SHAPESET_HIT)
 
 /* One entry of the errata catalog. bit is 0 for entries that materia fixes in
  * both modes (pbrt-v2 would produce NaN, Inf or memory corruption there). */
 typedef struct mt_erratum {
     const char *id;          /* short name, e.g. "scaled-pdf" */
     mt_mode bit;             /* the MT_FIX_* bit, or 0 */
-    const char *layer;       /* "bxdf", "bsdf", "material", "texture" */
+    const char *layer;       /* "bxdf", "bsdf", "material", "texture", "geometry" */
     const char *location;    /* where in pbrt-v2 */
     const char *behaviour;   /* what pbrt-v2 does */
     const char *correction;  /* what corrected mode does */

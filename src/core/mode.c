@@ -48,6 +48,60 @@ static const mt_erratum errata[] = {
     {"uber-opacity", MT_FIX_UBER_OPACITY, "material", "uber.cpp UberMaterial::GetBSDF",
      "opacity is clamped from below only, so opacity > 1 gives a negative transmission",
      "opacity clamped to [0, 1]"},
+    {"loop-normals", MT_FIX_LOOP_NORMALS, "geometry", "loopsubdiv.cpp LoopSubdiv::Refine",
+     "the vertices are pushed to their limit positions before Loop's tangent masks are applied "
+     "to the one-ring, though the masks are meant for the control points; and across the "
+     "boundary at vertices of four faces or more, Hoppe et al.'s mask does not belong to the "
+     "rules pbrt-v2 subdivides with there: the limit normals are degrees off the limit "
+     "surface's and change with nlevels (pbrt-v3 does the same)",
+     "the masks applied to the control points; at boundary vertices of four faces or more the "
+     "across tangent from the one-ring subdivided to its limit"},
+    {"disk-partials", MT_FIX_DISK_PARTIALS, "geometry", "disk.cpp Disk::Intersect",
+     "dpdu = phimax (-y, x, 0) carries an extra factor phimax / 2 pi, and dpdv = -(x, y) / "
+     "(1 - v) (radius - innerradius) / radius: the derivatives of the disk's (u, v) only for a "
+     "full disk (dpdu) or one without a hole (dpdv)",
+     "pbrt-v3's dpdu = phimax (-y, x, 0), dpdv = (x, y) (innerradius - radius) / rho"},
+    {"normal-derivatives", MT_FIX_NORMAL_DERIVATIVES, "geometry",
+     "sphere.cpp, cylinder.cpp Intersect; trianglemesh.cpp Triangle::GetShadingGeometry",
+     "dndu and dndv (of the object-space unit normal, or of the interpolated vertex normal "
+     "before normalization) are carried to world space as normals: not the derivatives of the "
+     "world unit normal unless the transform is rigid (half of them under Scale 2), nor negated "
+     "with it under ReverseOrientation (pbrt-v3 does the same)",
+     "the derivatives of the normal reported, (I - n n^T) A dN / |A N| with A the inverse "
+     "transpose, negated with n"},
+    {"triangle-facing", MT_FIX_TRIANGLE_FACING, "geometry",
+     "trianglemesh.cpp Triangle::Intersect, Triangle::Sample, Triangle::GetShadingGeometry",
+     "a hit's normal follows dpdu x dpdv, so it turns over with a mirrored uv map, and with "
+     "degenerate uvs it is Cross(e2, e1), against the winding; Sample() negates the winding's "
+     "normal under ReverseOrientation only, not under a mirroring transform as a hit's is; "
+     "with S and no N the shading normal, taken from the hit's, is flipped a second time",
+     "pbrt-v3's rule (Triangle::Intersect; pbrt-v4's Triangle::Sample): the winding's normal, "
+     "negated under ReverseOrientation xor a handedness change, for hits, samples and shading"},
+    {"partial-sampling", MT_FIX_PARTIAL_SAMPLING, "geometry",
+     "sphere.cpp Sphere::Sample, disk.cpp Disk::Sample",
+     "the full sphere, or the full disk of the outer radius, is sampled whatever zmin, zmax, "
+     "phimax and innerradius are, while Area() and Pdf() are the clipped shape's: samples on "
+     "the missing part are dropped and the others carry the clipped shape's density (a "
+     "hemisphere light gives half its light); a cone direction that misses a clipped sphere "
+     "gets the ray's point of closest approach, whose normal at right angles to the ray passes "
+     "the emission test about one time in two (pbrt-v3 samples full shapes too)",
+     "uniform in area on the clipped shape; a cone direction that misses gives no sample"},
+    {"quadric-scale", MT_FIX_QUADRIC_SCALE, "geometry",
+     "shape.cpp Shape::Pdf with the quadrics' Area(); sphere.cpp Sphere::Sample(p), Pdf(p)",
+     "quadrics measure Area() in object space, so Pdf = d^2 / (|cos| Area) is off by the "
+     "transform's area scale (four times too high under Scale 2: the light four times too "
+     "dark); the cone sampled from outside a sphere has the object-space radius about the "
+     "world-space centre, and an ellipsoid is sampled as a sphere",
+     "the world density 1 / (Area dA_world / dA_object) at the point; the cone with the world "
+     "radius under a similarity, area sampling otherwise"},
+    {"shapeset-hit", MT_FIX_SHAPESET_HIT, "geometry", "light.cpp ShapeSet::Sample; shape.cpp "
+     "Shape::Pdf",
+     "the ray towards the sample is intersected with every primitive, each hit overwriting the "
+     "one before (the comment says closest): the point kept is on the last primitive met in "
+     "index order, which the shadow ray then finds behind the nearer ones; and Shape::Pdf "
+     "counts one point of a primitive along a direction while ShapeSet brings every sample on "
+     "that ray to one point (a cylinder light seen from outside: counted once, reached twice)",
+     "the closest point; the pdf of a direction sums over every point of the set along it"},
     {"measured-empty", 0, "bxdf",
      "reflection.cpp IrregIsotropicBRDF::f",
      "f returns the clamped weighted sum of the samples divided by the sum of their weights "
@@ -98,6 +152,28 @@ static const mt_erratum errata[] = {
      "parameter first: \"inside\" is drawn around the dots and \"outside\" on them (the "
      "reference values show it)",
      "\"inside\" on the dots, \"outside\" around them"},
+    {"exr-half", MT_FIX_EXR_HALF, "texture", "imageio.cpp ReadImageEXR",
+     "reads R, G and B into a frame buffer of HALF slices, so OpenEXR converts float and uint "
+     "channels to half (ImfConvert.cpp floatToHalf, uintToHalf: round to nearest even, "
+     "relative change up to 2^-11; finite values beyond 65504 become infinite); materia "
+     "saturates those at +-65504, the largest half, so that no infinity is made",
+     "the stored precision (float and uint channels read exactly)"},
+    {"exr-missing-channels", MT_FIX_EXR_MISSING_CHANNELS, "texture",
+     "imageio.cpp ReadImageEXR",
+     "only the channels R, G and B are read, each missing one filled with 0: a luminance "
+     "(Y-only) file, or one with no R, G or B at all, reads black",
+     "Y alone is gray (Y, Y, Y); a file with none of R, G, B and Y is an error"},
+    {"pfm-rows", MT_FIX_PFM_ROWS, "texture", "imageio.cpp ReadImagePFM",
+     "keeps the rows in file order, but PFM stores them bottom to top: the image is upside "
+     "down relative to the same picture as EXR (row y of the texture is the file's row "
+     "height - 1 - y); pbrt-v2's own PFM writer writes bottom to top, so reading its output "
+     "back flips it",
+     "the file's first row is the image's bottom row, as the format says"},
+    {"exr-data-window", 0, "texture", "imageio.cpp ReadImageEXR",
+     "the frame buffer's slices start at the pixel buffer without subtracting the data "
+     "window's origin, so a data window not at (0, 0) makes OpenEXR write outside the buffer "
+     "(undefined behaviour)",
+     "the data window is read as the image wherever it lies (both modes)"},
     {"mix-overflow", 0, "material", "mixmat.cpp MixMaterial::GetBSDF",
      "a mix whose two materials have more than 8 BxDFs between them writes past the BSDF's "
      "array (its Assert is compiled out in release builds)",

@@ -3,10 +3,13 @@
  * per process and shares its MIPMap between every ImageTexture built with
  * the same filename, filtering options, wrap mode, scale and gamma
  * (textures/imagemap.h TexInfo, imagemap.cpp GetTexture; float and spectrum
- * textures have separate maps). Here the key also holds the mode (the
- * trilinear width erratum lives in the pyramid). A mutex guards the list;
- * the pyramids are read-only once made, so sharing them between threads
- * needs no lock.
+ * textures have separate maps). Here the key also holds the mode's bits
+ * that change the pyramid (MT__MIPMAP_MODE_BITS: the trilinear width
+ * erratum lives in the pyramid, and the image-reading errata change its
+ * texels), so that one file used in both modes gives two pyramids. The
+ * entries live in the generic cache of core/cache.h; the pyramids are
+ * read-only once made, so sharing them between threads needs no lock, and
+ * they belong to the cache (callers borrow them).
  *
  * Texels are converted as pbrt-v2's convertIn does: RGB textures store
  * pow(scale * rgb, gamma) per component, float textures pow(scale * y(rgb),
@@ -15,31 +18,20 @@
  * value to a non-integer gamma (NaN in pbrt-v2) gives 0, by the MIP-map's
  * texel rule.
  */
-#include <pthread.h>
+#include <stdio.h>
 #include <string.h>
 #include "core/alloc.h"
+#include "core/cache.h"
 #include "image/mipmap_impl.h"
 
-typedef struct cache_entry {
-    struct cache_entry *next;
-    char *path;
+/* What a pyramid is made from: the cache key's contents. */
+typedef struct texinfo {
+    const char *path;
     int trilinear, float_texture;
     mt_real maxaniso, scale, gamma;
     mt_wrap wrap;
-    mt_mode mode;
-    mt_mipmap *mipmap;
-} cache_entry;
-
-static pthread_mutex_t cache_lock = PTHREAD_MUTEX_INITIALIZER;
-static cache_entry *cache_head;
-
-static int same_key(const cache_entry *e, const char *path, int trilinear, mt_real maxaniso,
-                    mt_wrap wrap, mt_real scale, mt_real gamma, int float_texture, mt_mode mode)
-{
-    return e->trilinear == trilinear && e->maxaniso == maxaniso && e->wrap == wrap &&
-           e->scale == scale && e->gamma == gamma && e->float_texture == float_texture &&
-           e->mode == mode && strcmp(e->path, path) == 0;
-}
+    mt_mode mode; /* MT__MIPMAP_MODE_BITS only */
+} texinfo;
 
 /* imagemap.h convertIn, texel by texel. */
 static mt_real *convert_texels(const mt_image *img, mt_real scale, mt_real gamma,
@@ -61,33 +53,59 @@ static mt_real *convert_texels(const mt_image *img, mt_real scale, mt_real gamma
     return out;
 }
 
-static mt_mipmap *load(const char *path, int trilinear, mt_real maxaniso, mt_wrap wrap,
-                       mt_real scale, mt_real gamma, int float_texture, mt_mode mode,
-                       mt_error *err)
+/* The cache's builder: reads the file as the mode's textures see it. */
+static void *load(void *ctx, mt_error *err)
 {
+    const texinfo *ti = ctx;
     mt_image img;
     mt_real *texels;
     mt_mipmap *m;
-    if (mt_image_read(path, &img, err) != MT_OK) return NULL;
-    texels = convert_texels(&img, scale, gamma, float_texture);
+    if (mt_image_read_mode(ti->path, ti->mode, &img, err) != MT_OK) return NULL;
+    texels = convert_texels(&img, ti->scale, ti->gamma, ti->float_texture);
     if (!texels) {
         mt_image_free(&img);
-        mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", path);
+        mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", ti->path);
         return NULL;
     }
-    m = mt__mipmap_create_raw(img.width, img.height, float_texture ? 1 : 3, texels, trilinear,
-                              maxaniso, wrap, mode, err);
+    m = mt__mipmap_create_raw(img.width, img.height, ti->float_texture ? 1 : 3, texels,
+                              ti->trilinear, ti->maxaniso, ti->wrap, ti->mode, err);
     mt__free(texels);
     mt_image_free(&img);
     return m;
+}
+
+static void destroy(void *m) { mt_mipmap_destroy(m); }
+
+static mt__cache cache = MT__CACHE_INIT(NULL, destroy);
+
+/* The key: every field but the path in a fixed format (numbers as exact
+ * hexadecimal floats; -0 as 0, since the key compares values as pbrt-v2's
+ * TexInfo does), then the path. NULL when out of memory. */
+static char *make_key(const texinfo *ti)
+{
+    char head[160];
+    size_t hl, pl;
+    char *key;
+    int n = snprintf(head, sizeof head, "%d %d %d %a %a %a %x|", ti->trilinear,
+                     ti->float_texture, (int)ti->wrap, (double)(ti->maxaniso + 0),
+                     (double)(ti->scale + 0), (double)(ti->gamma + 0), ti->mode);
+    if (n < 0 || (size_t)n >= sizeof head) return NULL;
+    hl = (size_t)n;
+    pl = strlen(ti->path);
+    key = mt__malloc(hl + pl + 1);
+    if (!key) return NULL;
+    memcpy(key, head, hl);
+    memcpy(key + hl, ti->path, pl + 1);
+    return key;
 }
 
 mt_mipmap *mt_mipmap_cache_get(const char *path, int trilinear, mt_real maxaniso, mt_wrap wrap,
                                mt_real scale, mt_real gamma, int float_texture, mt_mode mode,
                                mt_error *err)
 {
-    cache_entry *e;
-    mt_mipmap *m = NULL;
+    texinfo ti;
+    char *key;
+    mt_mipmap *m;
     if (!path || !path[0]) {
         mt_error_param(err, MT_ERR_INVALID, "filename", "no image file name");
         return NULL;
@@ -104,62 +122,24 @@ mt_mipmap *mt_mipmap_cache_get(const char *path, int trilinear, mt_real maxaniso
         mt_error_param(err, MT_ERR_INVALID, "gamma", "must be a finite number");
         return NULL;
     }
-    trilinear = trilinear != 0;
-    float_texture = float_texture != 0;
-    pthread_mutex_lock(&cache_lock);
-    for (e = cache_head; e; e = e->next)
-        if (same_key(e, path, trilinear, maxaniso, wrap, scale, gamma, float_texture, mode)) {
-            m = e->mipmap;
-            break;
-        }
-    if (!m) {
-        /* loaded under the lock: a second thread asking for the same file
-         * waits for this one instead of reading it again */
-        m = load(path, trilinear, maxaniso, wrap, scale, gamma, float_texture, mode, err);
-        e = m ? mt__calloc(1, sizeof *e) : NULL;
-        if (e) e->path = mt__strdup(path);
-        if (m && (!e || !e->path)) {
-            if (e) mt__free(e);
-            mt_mipmap_destroy(m);
-            m = NULL;
-            mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", path);
-        } else if (m) {
-            e->trilinear = trilinear;
-            e->float_texture = float_texture;
-            e->maxaniso = maxaniso;
-            e->scale = scale;
-            e->gamma = gamma;
-            e->wrap = wrap;
-            e->mode = mode;
-            e->mipmap = m;
-            e->next = cache_head;
-            cache_head = e;
-        }
+    ti.path = path;
+    ti.trilinear = trilinear != 0;
+    ti.float_texture = float_texture != 0;
+    ti.maxaniso = maxaniso;
+    ti.scale = scale;
+    ti.gamma = gamma;
+    ti.wrap = wrap;
+    ti.mode = mode & MT__MIPMAP_MODE_BITS;
+    key = make_key(&ti);
+    if (!key) {
+        mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", path);
+        return NULL;
     }
-    pthread_mutex_unlock(&cache_lock);
+    m = mt__cache_get(&cache, key, path, load, &ti, err);
+    mt__free(key);
     return m;
 }
 
-int mt_mipmap_cache_size(void)
-{
-    const cache_entry *e;
-    int n = 0;
-    pthread_mutex_lock(&cache_lock);
-    for (e = cache_head; e; e = e->next) n++;
-    pthread_mutex_unlock(&cache_lock);
-    return n;
-}
+int mt_mipmap_cache_size(void) { return mt__cache_size(&cache); }
 
-void mt_mipmap_cache_clear(void)
-{
-    cache_entry *e, *next;
-    pthread_mutex_lock(&cache_lock);
-    for (e = cache_head; e; e = next) {
-        next = e->next;
-        mt_mipmap_destroy(e->mipmap);
-        mt__free(e->path);
-        mt__free(e);
-    }
-    cache_head = NULL;
-    pthread_mutex_unlock(&cache_lock);
-}
+void mt_mipmap_cache_clear(void) { mt__cache_clear(&cache); }

@@ -12,6 +12,13 @@
  * convert 4-channel half data into interleaved float RGBA gives wrong
  * pixels, so the library is never asked to convert.)
  *
+ * pbrt-v2's ReadImageEXR reads R, G and B only, into HALF slices filled
+ * with 0: without MT_FIX_EXR_MISSING_CHANNELS, Y is ignored (a Y-only file
+ * is black RGB), and without MT_FIX_EXR_HALF the colour channels are
+ * rounded to half (mt__float_through_half). pbrt-v2's slices are not offset
+ * by the data window's origin (undefined behaviour for a window not at 0,
+ * 0); the window is the image here in every mode.
+ *
  * Writing: float R, G, B (and A) -- or Y for a one-channel image -- with ZIP
  * compression and the caller's string attributes, through a temporary file
  * renamed into place.
@@ -147,6 +154,7 @@ static const char *const slot_names[NSLOTS] = {"R", "G", "B", "A", "Y"};
 
 typedef struct exr_reader {
     const char *path;
+    mt_mode mode;
     exr_context_t ctx;
     exr_stream stream;
     exr_attr_box2i_t dw;
@@ -155,6 +163,7 @@ typedef struct exr_reader {
     int type[NSLOTS];       /* the stored pixel type of each present slot */
     int dest[NSLOTS];       /* the image channel it fills, -1 for none */
     int gray;               /* Y fills R, G and B */
+    int decoded;            /* how many slots are read (0: the image stays black) */
     int chunk_w, chunk_h;   /* the largest chunk */
     uint8_t *planes;        /* NSLOTS planes of chunk_w * chunk_h 4-byte values */
     exr_decode_pipeline_t dec;
@@ -204,7 +213,9 @@ static mt_status plan_channels(exr_reader *r, int *channels, mt_error *err)
 {
     int k, rgb = r->present[SLOT_R] || r->present[SLOT_G] || r->present[SLOT_B];
     for (k = 0; k < NSLOTS; k++) r->dest[k] = -1;
-    if (rgb) {
+    /* pbrt-v2 mode: R, G and B whatever the file holds (erratum
+     * exr-missing-channels) */
+    if (rgb || !(r->mode & MT_FIX_EXR_MISSING_CHANNELS)) {
         r->dest[SLOT_R] = r->present[SLOT_R] ? 0 : -1;
         r->dest[SLOT_G] = r->present[SLOT_G] ? 1 : -1;
         r->dest[SLOT_B] = r->present[SLOT_B] ? 2 : -1;
@@ -219,6 +230,7 @@ static mt_status plan_channels(exr_reader *r, int *channels, mt_error *err)
                             r->path);
     }
     if (r->present[SLOT_A]) r->dest[SLOT_A] = 3;
+    for (k = 0; k < NSLOTS; k++) r->decoded += r->dest[k] >= 0;
     return MT_OK;
 }
 
@@ -235,6 +247,7 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
         return mt_error_set(err, MT_ERR_FORMAT,
                             "%s: corrupt chunk (%d x %d pixels at %d, %d in a %d x %d image)",
                             r->path, ci->width, ci->height, x, y, r->width, r->height);
+    if (!r->decoded) return MT_OK; /* pbrt-v2 mode, no R, G, B or A: black */
     rv = r->dec_ready ? exr_decoding_update(r->ctx, 0, ci, &r->dec)
                       : exr_decoding_initialize(r->ctx, 0, ci, &r->dec);
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, r->path, &r->stream, rv, "cannot decode");
@@ -254,6 +267,9 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, r->path, &r->stream, rv, "cannot decode");
     for (k = 0; k < NSLOTS; k++) {
         int d = r->dest[k], bpe = r->type[k] == EXR_PIXEL_HALF ? 2 : 4;
+        /* pbrt-v2's HALF frame buffer (erratum exr-half); alpha it never reads */
+        int through_half = !(r->mode & MT_FIX_EXR_HALF) && k != SLOT_A &&
+                           r->type[k] != EXR_PIXEL_HALF;
         const uint8_t *src = r->planes + (size_t)k * plane;
         if (!r->present[k] || d < 0) continue;
         for (j = 0; j < ci->height; j++) {
@@ -263,6 +279,7 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
             for (i = 0; i < ci->width; i++) {
                 float v = stored_to_float(row + (size_t)i * (size_t)bpe, r->type[k]);
                 float *px = dst + (size_t)i * (size_t)img->channels;
+                if (through_half) v = mt__float_through_half(v);
                 if (k == SLOT_Y && r->gray)
                     px[0] = px[1] = px[2] = v;
                 else
@@ -355,13 +372,14 @@ static mt_status read_image(exr_reader *r, mt_image *img, mt_error *err)
     return storage == EXR_STORAGE_TILED ? read_tiles(r, img, err) : read_scanlines(r, img, err);
 }
 
-mt_status mt__exr_read(const char *path, mt_image *img, mt_error *err)
+mt_status mt__exr_read(const char *path, mt_mode mode, mt_image *img, mt_error *err)
 {
     exr_reader r;
     struct stat sb;
     mt_status st;
     memset(&r, 0, sizeof r);
     r.path = path;
+    r.mode = mode;
     r.stream.fd = open(path, O_RDONLY | O_CLOEXEC);
     if (r.stream.fd < 0)
         return mt_error_set(err, MT_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
@@ -570,7 +588,13 @@ mt_status mt__exr_write(const char *path, const mt_image *img, const mt_image_at
     w.img = img;
     w.opt = opt;
     w.bpe = opt->pixel_type == EXR_PIXEL_HALF ? 2 : 4;
-    if (img->channels == 1) {
+    if (opt->names) {
+        for (k = 0; k < img->channels; k++)
+            if (opt->names[k]) {
+                w.names[w.nch] = opt->names[k];
+                w.src[w.nch++] = k;
+            }
+    } else if (img->channels == 1) {
         w.nch = 1;
         w.names[0] = "Y";
         w.src[0] = 0;

@@ -1,4 +1,5 @@
 /* IEEE 754 binary16 (OpenEXR's half) to and from binary32, by bits. */
+#include <float.h>
 #include <string.h>
 #include "image/imageio.h"
 
@@ -44,4 +45,18 @@ uint16_t mt__float_to_half(float f)
     halfway = 1u << (shift - 1);
     if (rem > halfway || (rem == halfway && (r & 1u))) r++;
     return (uint16_t)(sign | r);
+}
+
+/* A float or uint channel read into a HALF slice of pbrt-v2's frame buffer
+ * (imageio.cpp ReadImageEXR): OpenEXR converts with floatToHalf or
+ * uintToHalf (ImfConvert.cpp), which round to nearest even but turn finite
+ * values beyond HALF_MAX = 65504 into infinities. Here such values saturate
+ * at +-65504 instead, so that the conversion never makes an infinity (a
+ * stored infinity or NaN passes as it is, as in OpenEXR). A uint channel
+ * comes here as float: its values up to 65504 are exact in float. */
+float mt__float_through_half(float f)
+{
+    if (f > 65504.f && f <= FLT_MAX) return 65504.f;
+    if (f < -65504.f && f >= -FLT_MAX) return -65504.f;
+    return mt__half_to_float(mt__float_to_half(f));
 }

@@ -84,15 +84,21 @@ static image_format format_of(const char *path)
 
 mt_status mt_image_read(const char *path, mt_image *img, mt_error *err)
 {
+    return mt_image_read_mode(path, MT_MODE_CORRECTED, img, err);
+}
+
+mt_status mt_image_read_mode(const char *path, mt_mode mode, mt_image *img, mt_error *err)
+{
     mt_status st;
     if (!img) return mt_error_set(err, MT_ERR_INVALID, "mt_image_read: no image");
     img->width = img->height = img->channels = 0;
     img->data = NULL;
     if (!path) return mt_error_set(err, MT_ERR_INVALID, "mt_image_read: no file name");
+    mode &= MT_IMAGE_MODE_BITS;
     switch (format_of(path)) {
-    case FMT_EXR: st = mt__exr_read(path, img, err); break;
+    case FMT_EXR: st = mt__exr_read(path, mode, img, err); break;
     case FMT_PNG: st = mt__png_read(path, img, err); break;
-    case FMT_PFM: st = mt__pfm_read(path, img, err); break;
+    case FMT_PFM: st = mt__pfm_read(path, mode, img, err); break;
     default:
         return mt_error_set(err, MT_ERR_UNSUPPORTED,
                             "%s: unknown image type (materia reads .exr, .png and .pfm)", path);

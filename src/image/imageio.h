@@ -16,9 +16,11 @@
 #define MT__IMAGE_MAX_SIDE (1 << 24)
 #define MT__IMAGE_MAX_VALUES ((size_t)1 << 29)
 
-mt_status mt__exr_read(const char *path, mt_image *img, mt_error *err);
+/* The readers. mode: the MT_IMAGE_MODE_BITS of mt_image_read_mode (PNG has
+ * none: pbrt-v2 reads no PNG). */
+mt_status mt__exr_read(const char *path, mt_mode mode, mt_image *img, mt_error *err);
 mt_status mt__png_read(const char *path, mt_image *img, mt_error *err);
-mt_status mt__pfm_read(const char *path, mt_image *img, mt_error *err);
+mt_status mt__pfm_read(const char *path, mt_mode mode, mt_image *img, mt_error *err);
 
 /* How an EXR file is written. mt_image_write uses float pixels, ZIP
  * compression, scanlines and a data window at the origin. */
@@ -27,6 +29,10 @@ typedef struct mt__exr_options {
     int compression;  /* OpenEXR's EXR_COMPRESSION_* */
     int tile_w, tile_h; /* 0: scanline file */
     int x0, y0;       /* the data window's origin */
+    /* NULL: R, G, B (and A), or Y for one channel. Otherwise the name of
+     * each image channel's EXR channel, NULL to leave one out (a Y-and-A
+     * file, a file with no colour channel). */
+    const char *const *names;
 } mt__exr_options;
 void mt__exr_default_options(mt__exr_options *o);
 mt_status mt__exr_write(const char *path, const mt_image *img, const mt_image_attr *attrs,
@@ -54,6 +60,9 @@ void mt__tmpfile_abort(mt__tmpfile *t);
  * overflows to infinity as OpenEXR's half does. */
 float mt__half_to_float(uint16_t h);
 uint16_t mt__float_to_half(float f);
+/* f as pbrt-v2's HALF frame buffer holds it (erratum exr-half): rounded to
+ * half, finite values beyond +-65504 saturated there. */
+float mt__float_through_half(float f);
 
 /* Checks a size read from a file: sides in [1, MT__IMAGE_MAX_SIDE] and at
  * most MT__IMAGE_MAX_VALUES values. MT_ERR_FORMAT naming path otherwise. */

@@ -21,6 +21,11 @@ typedef struct mt__level {
     mt_real *texels; /* w * h * nc values, row by row */
 } mt__level;
 
+/* The mode bits a cached pyramid depends on: its lookups' (the trilinear
+ * width) and those of the reading of its file. The image-map cache keys on
+ * these only, so that modes differing elsewhere share a pyramid. */
+#define MT__MIPMAP_MODE_BITS (MT_FIX_TRILINEAR_WIDTH | MT_IMAGE_MODE_BITS)
+
 struct mt_mipmap {
     int nc;          /* 1 (float) or 3 (RGB) values per texel */
     int levels;

@@ -3,8 +3,11 @@
  * height and a scale whose sign gives the byte order (negative: little
  * endian) and whose magnitude multiplies the values (as pbrt-v2's
  * ReadImagePFM applies it when it is not 1), then 32-bit floats, rows
- * bottom to top. (pbrt-v2's reader keeps the rows in file order, i.e.
- * upside down; materia's image has row 0 at the top.)
+ * bottom to top; materia's image has row 0 at the top. pbrt-v2's reader
+ * (imageio.cpp ReadImagePFM) keeps the rows in file order, i.e. upside
+ * down: that is what a mode without MT_FIX_PFM_ROWS reads. "Pf" is one
+ * channel, which pbrt-v2 makes gray RGB as the image map cache does here;
+ * the scale is parsed as a float, as its sscanf("%f") does.
  *
  * Every size is checked against the file before anything is allocated, so a
  * corrupt header gives an error, never a huge allocation or a short read.
@@ -62,7 +65,7 @@ static float decode_float(const unsigned char *b, int little)
 }
 
 static mt_status read_pixels(FILE *f, const char *path, long header_len, long long file_size,
-                             float scale, mt_image *img, mt_error *err)
+                             float scale, int bottom_up, mt_image *img, mt_error *err)
 {
     size_t rowbytes = (size_t)img->width * (size_t)img->channels * 4, i;
     unsigned long long need = (unsigned long long)rowbytes * (unsigned long long)img->height;
@@ -78,9 +81,11 @@ static mt_status read_pixels(FILE *f, const char *path, long header_len, long lo
         return mt_error_set(err, MT_ERR_IO, "%s: cannot seek: %s", path, strerror(errno));
     row = mt__malloc(rowbytes);
     if (!row) return mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", path);
-    /* the file's first row is the image's bottom row */
-    for (y = img->height - 1; y >= 0; y--) {
-        float *dst = img->data + (size_t)y * (size_t)img->width * (size_t)img->channels;
+    /* the file's first row is the image's bottom row (or, as pbrt-v2 reads
+     * it, its top row) */
+    for (y = 0; y < img->height; y++) {
+        size_t at = bottom_up ? (size_t)(img->height - 1 - y) : (size_t)y;
+        float *dst = img->data + at * (size_t)img->width * (size_t)img->channels;
         if (fread(row, 1, rowbytes, f) != rowbytes) {
             mt__free(row);
             return mt_error_set(err, MT_ERR_IO, "%s: read error", path);
@@ -94,13 +99,13 @@ static mt_status read_pixels(FILE *f, const char *path, long header_len, long lo
     return MT_OK;
 }
 
-mt_status mt__pfm_read(const char *path, mt_image *img, mt_error *err)
+mt_status mt__pfm_read(const char *path, mt_mode mode, mt_image *img, mt_error *err)
 {
     char buf[HEADER_MAX], tok[32];
     size_t n, pos = 0;
     long long w = 0, h = 0, file_size;
     int channels;
-    double scale;
+    float scale;
     char *end;
     mt_status st;
     FILE *f = fopen(path, "rb");
@@ -122,8 +127,8 @@ mt_status mt__pfm_read(const char *path, mt_image *img, mt_error *err)
         mt_error_set(err, st, "%s: bad PFM header (width and height)", path);
         goto done;
     }
-    if (!next_token(buf, n, &pos, tok, sizeof tok) || (scale = strtod(tok, &end), *end) ||
-        !isfinite(scale) || scale == 0 || fabs(scale) > 3.4e38) {
+    if (!next_token(buf, n, &pos, tok, sizeof tok) || (scale = strtof(tok, &end), *end) ||
+        !isfinite(scale) || scale == 0) {
         mt_error_set(err, st, "%s: bad PFM header (the scale must be a non-zero number)", path);
         goto done;
     }
@@ -135,7 +140,9 @@ mt_status mt__pfm_read(const char *path, mt_image *img, mt_error *err)
     pos++;
     st = mt__image_check_size(path, w, h, channels, err);
     if (st == MT_OK) st = mt_image_alloc(img, (int)w, (int)h, channels, err);
-    if (st == MT_OK) st = read_pixels(f, path, (long)pos, file_size, (float)scale, img, err);
+    if (st == MT_OK)
+        st = read_pixels(f, path, (long)pos, file_size, scale, (mode & MT_FIX_PFM_ROWS) != 0,
+                         img, err);
 done:
     fclose(f);
     return st;

@@ -3,15 +3,19 @@
  * u = phi / phimax, v = 1 - (rho - innerradius) / (radius - innerradius)
  * (v = 1 at the inner edge). The normal is +z in object space.
  *
- * pbrt-v2's partial derivatives are kept as it computes them, though two
- * are not the derivatives of its (u, v): dpdu carries an extra factor
- * phimax / 2 pi (exact only for a full disk), and dpdv is
+ * Erratum disk-partials (MT_FIX_DISK_PARTIALS): two of pbrt-v2's partial
+ * derivatives are not the derivatives of its (u, v). dpdu carries an extra
+ * factor phimax / 2 pi (exact only for a full disk), and dpdv is
  * -(x, y) / (1 - v) (radius - innerradius) / radius, exact only for
- * innerradius = 0 (pbrt-v3 has -(x, y) (radius - innerradius) / rho). At
- * the exact centre pbrt-v2's derivatives vanish and its normal is NaN; here
- * they are taken 1e-5 radius off the centre, as pbrt-v2's sphere does at its
- * poles. Sample() covers the full disk of the outer radius whatever
- * innerradius and phimax are, as in pbrt-v2.
+ * innerradius = 0. pbrt-v2 mode keeps them; corrected mode has pbrt-v3's
+ * phimax (-y, x, 0) and (x, y) (innerradius - radius) / rho. At the exact
+ * centre pbrt-v2's derivatives vanish and its normal is NaN; here they are
+ * taken 1e-5 radius off the centre, as pbrt-v2's sphere does at its poles.
+ *
+ * Erratum partial-sampling (MT_FIX_PARTIAL_SAMPLING): pbrt-v2's Sample()
+ * covers the full disk of the outer radius whatever innerradius and phimax
+ * are, while Area() and Pdf() describe the partial disk; corrected mode
+ * samples the annulus sector uniformly.
  */
 #include "materia/sampling.h"
 #include "tracer/shape_impl.h"
@@ -72,7 +76,8 @@ void mt__disk_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
     static const double zero[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
     double rad = s->radius, ri = s->inner_radius, pm = s->phi_max;
     double p[3], perr[3], phi, rho, one_minus_v, inv, dpdu[3], dpdv[3];
-    double d_scale = pm * 0.15915494309189533577; /* pbrt-v2: dpdu *= phiMax * INV_TWOPI */
+    /* pbrt-v2: dpdu *= phiMax * INV_TWOPI */
+    double d_scale = (s->mode & MT_FIX_DISK_PARTIALS) ? 1 : pm * 0.15915494309189533577;
     mt_real u, v;
     p[0] = ph[0];
     p[1] = ph[1];
@@ -93,8 +98,15 @@ void mt__disk_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
     dpdu[0] = -pm * p[1] * d_scale;
     dpdu[1] = pm * p[0] * d_scale;
     dpdu[2] = 0;
-    dpdv[0] = -p[0] * inv * ((rad - ri) / rad);
-    dpdv[1] = -p[1] * inv * ((rad - ri) / rad);
+    if (s->mode & MT_FIX_DISK_PARTIALS) {
+        /* rho = radius - v (radius - innerradius): drho/dv = innerradius - radius */
+        double k = (ri - rad) / sqrt(p[0] * p[0] + p[1] * p[1]);
+        dpdv[0] = p[0] * k;
+        dpdv[1] = p[1] * k;
+    } else {
+        dpdv[0] = -p[0] * inv * ((rad - ri) / rad);
+        dpdv[1] = -p[1] * inv * ((rad - ri) / rad);
+    }
     dpdv[2] = 0;
     mt__surface_from_object(s, ph, perr, dpdu, dpdv, zero, zero, nz, u, v, sf);
 }
@@ -108,8 +120,20 @@ mt_real mt__disk_area(const mt_shape *s)
 mt_vec3 mt__disk_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns)
 {
     mt_real x, y;
-    mt_concentric_sample_disk(u1, u2, &x, &y);
+    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && (s->inner_radius > 0 || mt__phi_cut(s))) {
+        /* uniform in area on the annulus sector: rho^2 uniform between the
+         * radii, phi uniform in [0, phimax] */
+        mt_real ri2 = s->inner_radius * s->inner_radius, r2 = s->radius * s->radius;
+        mt_real rho = mt_sqrt(mt_min(r2, ri2 + u1 * (r2 - ri2))), phi = u2 * s->phi_max;
+        x = rho * mt_cos(phi);
+        y = rho * mt_sin(phi);
+    } else {
+        /* pbrt-v2 Disk::Sample: the full disk of the outer radius */
+        mt_concentric_sample_disk(u1, u2, &x, &y);
+        x *= s->radius;
+        y *= s->radius;
+    }
     *ns = mt_v3_normalize(mt_transform_normal(&s->o2w, mt_v3(0, 0, 1)));
     if (s->reverse_orientation) *ns = mt_v3_neg(*ns);
-    return mt_transform_point(&s->o2w, mt_v3(x * s->radius, y * s->radius, s->height));
+    return mt_transform_point(&s->o2w, mt_v3(x, y, s->height));
 }

@@ -24,7 +24,10 @@
  *
  * Shapes keep pbrt-v2's parameterisations, partial derivatives and normal
  * orientation (sphere, disk, cylinder, trianglemesh and loopsubdiv, which
- * becomes a triangle mesh). Intersection is more careful than pbrt-v2's:
+ * becomes a triangle mesh), pbrt-v2's geometry errata included unless the
+ * shape's mode (mt_shape_options.mode) fixes them: loop-normals,
+ * disk-partials, normal-derivatives, triangle-facing (hits and shading),
+ * and the sampling ones below. Intersection is more careful than pbrt-v2's:
  * quadrics are solved in double precision in object space, triangles with
  * the watertight test of Woop, Benthin and Wald (JCGT 2013), and every hit
  * carries a conservative bound on the error of its point (pbrt-v3, section
@@ -37,6 +40,7 @@
 
 #include <stdint.h>
 #include "materia/diffgeom.h"
+#include "materia/mode.h"
 #include "materia/params.h"
 #include "materia/parser.h"
 #include "materia/transform.h"
@@ -91,9 +95,14 @@ typedef enum mt_shape_kind {
 
 typedef struct mt_shape mt_shape;
 
+/* Zero-initialize (or memset) before filling: a zero mode is pbrt-v2's. */
 typedef struct mt_shape_options {
     mt_warning_fn warn; /* pbrt-v2's warnings (extra uvs, discarded uvs); may be NULL */
     void *warn_ctx;
+    /* The geometry errata the shape fixes (the MT_FIX_* bits of the
+     * "geometry" layer, include/materia/mode.h; others are ignored): the
+     * shape keeps its mode, and every query on it answers in that mode. */
+    mt_mode mode;
 } mt_shape_options;
 
 /* A shape of pbrt-v2 type `type` ("sphere", "disk", "cylinder",
@@ -123,11 +132,11 @@ mt_shape *mt_shape_from_statement(const mt_statement *st, const mt_transform *o2
 
 /* A triangle mesh from arrays (indices: 3 per triangle; N, S, uv may be
  * NULL), as pbrt-v2's TriangleMesh constructor takes them: P, N, S in object
- * space. The arrays are copied. */
+ * space. The arrays are copied. opt may be NULL (pbrt-v2 mode). */
 mt_shape *mt_shape_create_mesh(const mt_transform *o2w, int reverse_orientation, int ntris,
                                const int *indices, int nverts, const mt_vec3 *P,
                                const mt_vec3 *N, const mt_vec3 *S, const mt_real *uv,
-                               mt_error *err);
+                               const mt_shape_options *opt, mt_error *err);
 
 void mt_shape_destroy(mt_shape *s);
 
@@ -137,6 +146,8 @@ uint32_t mt_shape_prim_count(const mt_shape *s);
 /* pbrt-v2's ReverseOrientation ^ TransformSwapsHandedness (mt_diffgeom.flip). */
 int mt_shape_flip(const mt_shape *s);
 int mt_shape_reverse_orientation(const mt_shape *s);
+/* The mode the shape was created in (mt_shape_options.mode). */
+mt_mode mt_shape_mode(const mt_shape *s);
 const mt_transform *mt_shape_object_to_world(const mt_shape *s);
 /* World bounds of one primitive (conservative). */
 void mt_shape_prim_bounds(const mt_shape *s, uint32_t prim, mt_vec3 *lo, mt_vec3 *hi);
@@ -217,30 +228,45 @@ mt_ray mt_surface_spawn_to(const mt_surface *sf, mt_vec3 p);
 /* A shadow ray between two surface points (both ends offset). */
 mt_ray mt_surface_spawn_between(const mt_surface *from, const mt_surface *to);
 
-/* ---- sampling, for area lights (pbrt-v2 Shape and ShapeSet) ------------------ */
+/* ---- sampling, for area lights (pbrt-v2 Shape and ShapeSet) ------------------
+ * In pbrt-v2 mode these are pbrt-v2's, errata included; the shape's mode
+ * fixes them (include/materia/mode.h, the geometry layer: partial-sampling,
+ * quadric-scale, triangle-facing, shapeset-hit). */
 
 /* Area of one primitive (pbrt-v2 Shape::Area: object-space for quadrics,
- * world-space for triangles). */
+ * world-space for triangles, in both modes). */
 mt_real mt_shape_area(const mt_shape *s, uint32_t prim);
 /* pbrt-v2 Shape::Sample(u1, u2, &Ns): a point on the primitive and its
- * normal *ns (negated under ReverseOrientation only, as pbrt-v2 does). */
+ * normal *ns (for triangles, negated under ReverseOrientation only in
+ * pbrt-v2 mode; as a hit's normal with triangle-facing fixed). pbrt-v2's
+ * sphere and disk cover the full shape whatever their clipping; with
+ * partial-sampling fixed, the clipped shape, uniformly in object area. */
 mt_vec3 mt_shape_sample(const mt_shape *s, uint32_t prim, mt_real u1, mt_real u2, mt_vec3 *ns);
 /* pbrt-v2 Shape::Sample(p, u1, u2, &Ns): for a sphere seen from outside, a
  * direction uniform in the cone it subtends and the point where it meets the
- * sphere; otherwise as mt_shape_sample. */
+ * sphere; otherwise as mt_shape_sample. With partial-sampling fixed, a cone
+ * direction that misses a clipped sphere gives a zero *ns (no emission; its
+ * pdf is 0). With quadric-scale fixed the cone has the world radius, and a
+ * sphere under a transform that is not a similarity is area-sampled (and,
+ * with shapeset-hit fixed, moved to the first point of the ray from p
+ * through the sample, as ShapeSet does). */
 mt_vec3 mt_shape_sample_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_real u1, mt_real u2,
                              mt_vec3 *ns);
 /* pbrt-v2 Shape::Pdf(p, wi) (solid angle, wi unit): the cone pdf for a
  * sphere seen from outside; otherwise distance^2 / (|cos| area) at the
  * primitive's hit by the ray (p, wi, tmin 1e-3), 0 when it misses or the
- * value is not finite. */
+ * value is not finite. Fixed: the cone only for directions that meet a
+ * clipped sphere (partial-sampling); the world density of a quadric
+ * (quadric-scale); every point of a quadric along the ray, summed
+ * (shapeset-hit). */
 mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 wi);
 
 /* pbrt-v2 ShapeSet: every primitive of the shape, one chosen with
  * probability proportional to its area (ucomp) and sampled with (u1, u2).
  * _from samples as seen from p and, as pbrt-v2 does, returns the point where
  * the ray from p towards the sample meets the last primitive of the set
- * that it meets (tmin 1e-3), with that primitive's normal. */
+ * that it meets (tmin 1e-3), with that primitive's normal; the closest one
+ * with shapeset-hit fixed. */
 mt_real mt_shape_total_area(const mt_shape *s);
 mt_vec3 mt_shape_set_sample(const mt_shape *s, mt_real ucomp, mt_real u1, mt_real u2,
                             mt_vec3 *ns);

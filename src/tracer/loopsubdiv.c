@@ -14,6 +14,15 @@
  * (not normalized, as pbrt-v2 passes it) and the same vertex and triangle
  * order as pbrt-v2's Refine.
  *
+ * Erratum loop-normals (MT_FIX_LOOP_NORMALS): pbrt-v2 (and pbrt-v3) apply
+ * the tangent masks to the one-ring after every vertex has been pushed to
+ * its limit position; the masks give the limit tangents only when applied
+ * to the control points, and the normals come out a few degrees off the
+ * limit surface's. Corrected mode applies them to the control points, and
+ * at boundary vertices with four faces or more, where pbrt-v2's mask does
+ * not belong to its own subdivision rules, takes the across tangent from
+ * the one-ring subdivided to its limit (boundary_across_limit).
+ *
  * pbrt-v2 walks faces through neighbour pointers and would loop or crash on
  * meshes that are not 2-manifold; materia refuses, naming the problem: an
  * edge shared by more than two triangles, two triangles that traverse a
@@ -45,8 +54,9 @@ typedef struct sd_mesh {
     sd_vert *v;
     sd_face *f;
     int nv, nf;
-    mt_vec3 *ring; /* scratch for one-rings */
+    mt_vec3 *ring; /* scratch for one-rings: room for 3 times the ring */
     int ring_cap;
+    mt_mode mode;
 } sd_mesh;
 
 static int vnum(const sd_face *f, int v) { return f->v[0] == v ? 0 : (f->v[1] == v ? 1 : 2); }
@@ -75,11 +85,11 @@ static int valence(const sd_mesh *m, int v)
 static int one_ring(sd_mesh *m, int v)
 {
     int n = valence(m, v), f = m->v[v].start, f2, k = 0;
-    if (n > m->ring_cap) {
-        mt_vec3 *r = mt__realloc(m->ring, (size_t)n * 2 * sizeof *r);
+    if (3 * n > m->ring_cap) {
+        mt_vec3 *r = mt__realloc(m->ring, (size_t)n * 6 * sizeof *r);
         if (!r) return -1;
         m->ring = r;
-        m->ring_cap = n * 2;
+        m->ring_cap = n * 6;
     }
     if (!m->v[v].boundary) {
         do {
@@ -314,6 +324,60 @@ nomem:
 
 /* ---- limit positions and normals ------------------------------------------------ */
 
+/* pbrt-v2's boundary tangent across the boundary (Hoppe et al. 1994) from
+ * the one-ring r[0..n-1] of the boundary vertex P. */
+static mt_vec3 boundary_across(const mt_vec3 *r, int n, mt_vec3 P)
+{
+    mt_vec3 T = mt_v3(0, 0, 0);
+    int k;
+    if (n == 2) return mt_v3_sub(mt_v3_add(r[0], r[1]), mt_v3_scale(P, 2));
+    if (n == 3) return mt_v3_sub(r[1], P);
+    if (n == 4) /* regular */
+        return mt_v3_add(mt_v3_add(mt_v3_scale(r[0], -1), mt_v3_scale(r[1], 2)),
+                         mt_v3_add(mt_v3_add(mt_v3_scale(r[2], 2), mt_v3_scale(r[3], -1)),
+                                   mt_v3_scale(P, -2)));
+    {
+        mt_real th = MT_PI / (mt_real)(n - 1);
+        T = mt_v3_scale(mt_v3_add(r[0], r[n - 1]), mt_sin(th));
+        for (k = 1; k < n - 1; ++k) T = madd(T, (2 * mt_cos(th) - 2) * mt_sin(k * th), r[k]);
+    }
+    return mt_v3_neg(T);
+}
+
+/* Erratum loop-normals, boundary vertices with four faces or more: the
+ * mask above is not a left eigenvector of the rules pbrt-v2 subdivides
+ * with there (the boundary rule for the vertex, Loop's interior edge rule
+ * for the edges inside), so even on the control points it misses the limit
+ * tangent (3.4 degrees at a valence-5 corner of an open box, turning with
+ * every level). The one-ring is closed under those rules: subdividing it
+ * alone, level after level, leaves the components of the limit tangents,
+ * and the mask applied then gives their direction (32 levels: the others
+ * decay about twofold per level). tmp holds 2n points. */
+static mt_vec3 boundary_across_limit(const mt_vec3 *r, int n, mt_vec3 P, mt_vec3 *tmp)
+{
+    mt_vec3 *a = tmp, *b = tmp + n, v = P, T0 = boundary_across(r, n, P), T;
+    mt_real l0 = mt_v3_len(T0), l;
+    int k, it;
+    for (k = 0; k < n; ++k) a[k] = r[k];
+    for (it = 0; it < 32; ++it) {
+        mt_vec3 nv = madd(madd(mt_v3_scale(v, (mt_real)3 / 4), (mt_real)1 / 8, a[0]),
+                          (mt_real)1 / 8, a[n - 1]);
+        b[0] = mt_v3_scale(mt_v3_add(v, a[0]), (mt_real)0.5);
+        b[n - 1] = mt_v3_scale(mt_v3_add(v, a[n - 1]), (mt_real)0.5);
+        for (k = 1; k < n - 1; ++k)
+            b[k] = madd(madd(mt_v3_scale(mt_v3_add(v, a[k]), (mt_real)3 / 8), (mt_real)1 / 8,
+                             a[k - 1]),
+                        (mt_real)1 / 8, a[k + 1]);
+        /* about the new vertex and twice as large: the tangents' components
+         * (eigenvalue 1/2) keep their size */
+        for (k = 0; k < n; ++k) a[k] = mt_v3_scale(mt_v3_sub(b[k], nv), 2);
+        v = mt_v3(0, 0, 0);
+    }
+    T = boundary_across(a, n, v);
+    l = mt_v3_len(T);
+    return l > 0 && mt_is_finite(l) ? mt_v3_scale(T, l0 / l) : T0;
+}
+
 static int limit_normal(sd_mesh *m, int i, mt_vec3 *N)
 {
     int n = one_ring(m, i), k;
@@ -327,18 +391,8 @@ static int limit_normal(sd_mesh *m, int i, mt_vec3 *N)
         }
     } else {
         S = mt_v3_sub(r[n - 1], r[0]);
-        if (n == 2) T = mt_v3_sub(mt_v3_add(r[0], r[1]), mt_v3_scale(P, 2));
-        else if (n == 3) T = mt_v3_sub(r[1], P);
-        else if (n == 4) /* regular */
-            T = mt_v3_add(mt_v3_add(mt_v3_scale(r[0], -1), mt_v3_scale(r[1], 2)),
-                          mt_v3_add(mt_v3_add(mt_v3_scale(r[2], 2), mt_v3_scale(r[3], -1)),
-                                    mt_v3_scale(P, -2)));
-        else {
-            mt_real th = MT_PI / (mt_real)(n - 1);
-            T = mt_v3_scale(mt_v3_add(r[0], r[n - 1]), mt_sin(th));
-            for (k = 1; k < n - 1; ++k) T = madd(T, (2 * mt_cos(th) - 2) * mt_sin(k * th), r[k]);
-            T = mt_v3_neg(T);
-        }
+        if (n >= 5 && (m->mode & MT_FIX_LOOP_NORMALS)) T = boundary_across_limit(r, n, P, r + n);
+        else T = boundary_across(r, n, P);
     }
     *N = mt_v3_cross(S, T);
     return 1;
@@ -356,7 +410,11 @@ static mt_status build_limit(mt_shape *s, sd_mesh *m, mt_error *err)
         else if (m->v[i].boundary) ok = weight_boundary(m, i, (mt_real)1 / 5, &Pl[i]);
         else ok = weight_one_ring(m, i, loop_gamma(valence(m, i)), &Pl[i]);
     }
-    for (i = 0; ok && i < m->nv; ++i) m->v[i].P = Pl[i];
+    /* pbrt-v2 pushes every vertex to its limit position before it applies
+     * the tangent masks, which are meant for the control points (erratum
+     * loop-normals); corrected mode applies them first */
+    if (!(s->mode & MT_FIX_LOOP_NORMALS))
+        for (i = 0; ok && i < m->nv; ++i) m->v[i].P = Pl[i];
     for (i = 0; ok && i < m->nv; ++i) {
         if (m->v[i].start < 0) N[i] = mt_v3(0, 0, 0);
         else ok = limit_normal(m, i, &N[i]);
@@ -409,6 +467,7 @@ mt_status mt__loopsubdiv_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
         }
     }
     memset(&m, 0, sizeof m);
+    m.mode = s->mode;
     st = control_mesh(&m, nvi / 3, vi, npi, P, err);
     for (level = 0; st == MT_OK && level < nlevels; ++level) st = refine(&m, err);
     if (st == MT_OK) st = build_limit(s, &m, err);

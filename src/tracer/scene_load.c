@@ -208,8 +208,10 @@ static mt_status do_shape(mt__loader *ld, const mt_statement *st, mt_error *err)
     s->materials[s->nmaterials++] = m;
     mt_state_material(ld->state, &spec);
     mt__loader_report_unused(ld, spec.name ? spec.geom : spec.material);
+    memset(&opt, 0, sizeof opt);
     opt.warn = ld->warn;
     opt.warn_ctx = ld->warn_ctx;
+    opt.mode = s->mode; /* the geometry errata, as the materials' */
     shape = mt_shape_from_statement(st, mt_state_transform(ld->state),
                                     mt_state_reverse_orientation(ld->state), &opt, err);
     if (!shape) return err->status;

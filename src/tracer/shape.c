@@ -18,22 +18,43 @@ void mt__locate_param(mt_error *err, const mt_paramset *ps, const char *name)
     if (err && p && p->file) mt_error_locate(err, p->file, p->line, p->column);
 }
 
-static mt_shape *shape_new(const mt_transform *o2w, int ro)
+/* The scale of a similarity L = k Q (Q orthogonal): L^T L = k^2 I within a
+ * relative 1e-5 (the rounding of the float parameters of Rotate and
+ * LookAt); 0 otherwise. */
+static double similarity_scale(const mt_transform *t)
+{
+    const double(*m)[4] = t->m.m;
+    double g[3][3], k2;
+    int i, j, l;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j)
+            for (g[i][j] = 0, l = 0; l < 3; ++l) g[i][j] += m[l][i] * m[l][j];
+    k2 = (g[0][0] + g[1][1] + g[2][2]) / 3;
+    if (!(k2 > 0) || !isfinite(k2)) return 0;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j)
+            if (fabs(g[i][j] - (i == j ? k2 : 0)) > 1e-5 * k2) return 0;
+    return sqrt(k2);
+}
+
+static mt_shape *shape_new(const mt_transform *o2w, int ro, const mt_shape_options *opt)
 {
     mt_shape *s = mt__calloc(1, sizeof *s);
     if (!s) return NULL;
+    s->mode = opt ? opt->mode : MT_MODE_PBRT_V2;
     s->o2w = *o2w;
     s->w2o = mt_transform_inverse(o2w);
     s->reverse_orientation = ro != 0;
     s->swaps_handedness = mt_transform_swaps_handedness(o2w);
     s->flip = s->reverse_orientation ^ s->swaps_handedness;
+    s->sim_scale = similarity_scale(o2w);
     return s;
 }
 
 mt_shape *mt_shape_create(const char *type, const mt_paramset *ps, const mt_transform *o2w,
                           int reverse_orientation, const mt_shape_options *opt, mt_error *err)
 {
-    static const mt_shape_options none = {NULL, NULL};
+    static const mt_shape_options none = {NULL, NULL, MT_MODE_PBRT_V2};
     mt_shape *s;
     mt_status st;
     int i;
@@ -45,7 +66,7 @@ mt_shape *mt_shape_create(const char *type, const mt_paramset *ps, const mt_tran
                          "cylinder, trianglemesh and loopsubdiv)", type);
             return NULL;
         }
-    s = shape_new(o2w, reverse_orientation);
+    s = shape_new(o2w, reverse_orientation, opt);
     if (!s) {
         mt_error_set(err, MT_ERR_NOMEM, "out of memory creating shape \"%s\"", type);
         return NULL;
@@ -86,9 +107,9 @@ mt_shape *mt_shape_from_statement(const mt_statement *st, const mt_transform *o2
 mt_shape *mt_shape_create_mesh(const mt_transform *o2w, int reverse_orientation, int ntris,
                                const int *indices, int nverts, const mt_vec3 *P,
                                const mt_vec3 *N, const mt_vec3 *S, const mt_real *uv,
-                               mt_error *err)
+                               const mt_shape_options *opt, mt_error *err)
 {
-    mt_shape *s = shape_new(o2w, reverse_orientation);
+    mt_shape *s = shape_new(o2w, reverse_orientation, opt);
     if (!s) {
         mt_error_set(err, MT_ERR_NOMEM, "out of memory creating a triangle mesh");
         return NULL;
@@ -119,6 +140,7 @@ uint32_t mt__shape_nprims(const mt_shape *s) { return s->kind == MT_SHAPE_TRIANG
 uint32_t mt_shape_prim_count(const mt_shape *s) { return mt__shape_nprims(s); }
 int mt_shape_flip(const mt_shape *s) { return s->flip; }
 int mt_shape_reverse_orientation(const mt_shape *s) { return s->reverse_orientation; }
+mt_mode mt_shape_mode(const mt_shape *s) { return s->mode; }
 const mt_transform *mt_shape_object_to_world(const mt_shape *s) { return &s->o2w; }
 void mt_shape_set_user(mt_shape *s, void *user) { s->user = user; }
 void *mt_shape_user(const mt_shape *s) { return s->user; }
@@ -393,7 +415,55 @@ static void xf_normal(const double minv[4][4], const double n[3], double out[3])
     int i;
     for (i = 0; i < 3; ++i) out[i] = minv[0][i] * n[0] + minv[1][i] * n[1] + minv[2][i] * n[2];
 }
+double mt__area_scale(const mt_shape *s, const double n[3])
+{
+    const double(*m)[4] = s->o2w.m.m;
+    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                 m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    double w[3];
+    xf_normal(s->o2w.minv.m, n, w);
+    return fabs(det) * sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+}
+
 static mt_vec3 to_vec(const double v[3]) { return mt_v3((mt_real)v[0], (mt_real)v[1], (mt_real)v[2]); }
+
+/* Erratum normal-derivatives: the derivatives of the world normal dg.n
+ * from the object-space derivatives dndu, dndv of the unit normal N. With
+ * L the linear part of o2w, dg.n = sigma A N / |A N| for A = L^-T and sigma
+ * = -1 under ReverseOrientation (the handedness flip cancels the sign of
+ * det L in Cross(L dpdu, L dpdv) = det L A (dpdu x dpdv)), so
+ * d(dg.n) = sigma (I - n n^T) A dN / |A N|. pbrt-v2 keeps A dN: half the
+ * true value under Scale 2, and the wrong sign under ReverseOrientation. */
+static void world_normal_derivatives(const mt_shape *s, const double dpdu[3],
+                                     const double dpdv[3], const double dndu[3],
+                                     const double dndv[3], const double nfallback[3],
+                                     mt_diffgeom *dg)
+{
+    const double(*mi)[4] = s->o2w.minv.m;
+    double N[3], a[3], la, b[3], c[3], k;
+    int i;
+    cross3(dpdu, dpdv, N);
+    if (!(dot3(N, N) > 0) || !isfinite(dot3(N, N)))
+        for (i = 0; i < 3; ++i) N[i] = nfallback[i];
+    la = sqrt(dot3(N, N));
+    for (i = 0; i < 3; ++i) N[i] /= la;
+    xf_normal(mi, N, a);
+    la = sqrt(dot3(a, a));
+    for (i = 0; i < 3; ++i) a[i] /= la;
+    k = (s->reverse_orientation ? -1 : 1) / la;
+    xf_normal(mi, dndu, b);
+    xf_normal(mi, dndv, c);
+    {
+        double ab = dot3(a, b), ac = dot3(a, c);
+        for (i = 0; i < 3; ++i) {
+            b[i] = (b[i] - a[i] * ab) * k;
+            c[i] = (c[i] - a[i] * ac) * k;
+        }
+    }
+    dg->dndu = to_vec(b);
+    dg->dndv = to_vec(c);
+}
 
 void mt__surface_from_object(const mt_shape *s, const double p[3], const double perr[3],
                              const double dpdu[3], const double dpdv[3], const double dndu[3],
@@ -431,10 +501,15 @@ void mt__surface_from_object(const mt_shape *s, const double p[3], const double 
     xf_vector(m, dpdv, wdv);
     dg->dpdu = to_vec(wdu);
     dg->dpdv = to_vec(wdv);
-    xf_normal(mi, dndu, tmp);
-    dg->dndu = to_vec(tmp);
-    xf_normal(mi, dndv, tmp);
-    dg->dndv = to_vec(tmp);
+    if (s->mode & MT_FIX_NORMAL_DERIVATIVES) {
+        world_normal_derivatives(s, dpdu, dpdv, dndu, dndv, nfallback, dg);
+    } else {
+        /* pbrt-v2: o2w(dndu) with dndu a Normal (the inverse transpose) */
+        xf_normal(mi, dndu, tmp);
+        dg->dndu = to_vec(tmp);
+        xf_normal(mi, dndv, tmp);
+        dg->dndv = to_vec(tmp);
+    }
 
     /* pbrt-v2 DifferentialGeometry: nn = Normalize(Cross(dpdu, dpdv)), negated
      * when ReverseOrientation ^ TransformSwapsHandedness. */

@@ -13,6 +13,10 @@ struct mt_shape {
     mt_shape_kind kind;
     mt_transform o2w, w2o;
     int reverse_orientation, swaps_handedness, flip;
+    mt_mode mode; /* the geometry errata fixed (mt_shape_options.mode) */
+    /* o2w's linear part is sim_scale times an orthogonal matrix (a
+     * similarity: spheres stay spheres); 0 when it is not */
+    double sim_scale;
     void *user;
 
     /* quadrics, as pbrt-v2 stores them (its float arithmetic in mt_real) */
@@ -58,8 +62,9 @@ mt_vec3 mt__disk_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns);
 mt_vec3 mt__cylinder_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns);
 mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2,
                                mt_vec3 *ns);
-/* 1 with *pdf when the sphere handles Pdf(p, wi) itself (p outside). */
-int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_real *pdf);
+/* 1 with *pdf when the sphere handles Pdf(p, wi) itself (the cone seen
+ * from outside). */
+int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi, mt_real *pdf);
 
 /* Object-space bounds of a quadric (pbrt-v2 ObjectBound). */
 void mt__quadric_object_bounds(const mt_shape *s, double lo[3], double hi[3]);
@@ -103,6 +108,10 @@ void mt__surface_from_object(const mt_shape *s, const double p[3], const double 
                              const double dpdu[3], const double dpdv[3], const double dndu[3],
                              const double dndv[3], const double nfallback[3], mt_real u,
                              mt_real v, mt_surface *sf);
+/* dA_world / dA_object at a point of a quadric with unit object-space
+ * normal n: |det L| |L^-T n| for the linear part L of o2w (erratum
+ * quadric-scale: pbrt-v2 measures areas in object space). */
+double mt__area_scale(const mt_shape *s, const double n[3]);
 /* pbrt-v2's Weingarten equations: dndu, dndv from the first and second
  * fundamental forms (zero where E G - F^2 vanishes). */
 void mt__weingarten(const double dpdu[3], const double dpdv[3], const double d2pduu[3],

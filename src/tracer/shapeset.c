@@ -3,6 +3,22 @@
  * Sample, Pdf per primitive (core/shape.cpp and the shapes), and its
  * ShapeSet (core/light.cpp), which samples a primitive by area through a
  * Distribution1D (core/montecarlo.h).
+ *
+ * Two errata live here (corrected mode; pbrt-v3 has no ShapeSet):
+ * - quadric-scale (MT_FIX_QUADRIC_SCALE): Shape::Pdf divides by Area(),
+ *   which quadrics measure in object space, so a scaled sphere, disk or
+ *   cylinder light has the wrong density (under Scale 2 four times too
+ *   high: the light comes out four times too dark); corrected: the world
+ *   density 1 / (Area() dA_world/dA_object) at the point.
+ * - shapeset-hit (MT_FIX_SHAPESET_HIT): ShapeSet::Sample moves the sample
+ *   to a point of the ray from p through it -- "the closest intersection",
+ *   says its comment, but every primitive overwrites the hit of the one
+ *   before, so it is the last primitive met in index order, which the
+ *   shadow ray then finds hidden behind the nearer ones -- and Shape::Pdf
+ *   counts only the first point of a primitive along a direction, while
+ *   ShapeSet brings every sample on that ray to one point; corrected: the
+ *   closest point, and the pdf of a direction sums over every point of the
+ *   set along it (the density of the directions ShapeSet produces).
  */
 #include "core/alloc.h"
 #include "tracer/shape_impl.h"
@@ -36,20 +52,47 @@ mt_vec3 mt_shape_sample_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_rea
     return mt_shape_sample(s, prim, u1, u2, ns);
 }
 
+/* The area of the primitive as the density at a hit sees it: pbrt-v2's
+ * Area(); with quadric-scale fixed, a quadric's object area times the
+ * world-to-object area ratio at the hit's object-space normal. */
+static mt_real density_area(const mt_shape *s, uint32_t prim, const mt_hit *hit)
+{
+    double n[3], len;
+    const double *p = hit->pobj;
+    if (s->kind == MT_SHAPE_TRIANGLES || !(s->mode & MT_FIX_QUADRIC_SCALE))
+        return mt_shape_area(s, prim);
+    n[0] = s->kind == MT_SHAPE_DISK ? 0 : p[0];
+    n[1] = s->kind == MT_SHAPE_DISK ? 0 : p[1];
+    n[2] = s->kind == MT_SHAPE_CYLINDER ? 0 : (s->kind == MT_SHAPE_DISK ? 1 : p[2]);
+    len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0)) return mt_shape_area(s, prim);
+    n[0] /= len;
+    n[1] /= len;
+    n[2] /= len;
+    return (mt_real)(mt_shape_area(s, prim) * mt__area_scale(s, n));
+}
+
 mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 wi)
 {
-    mt_real pdf;
+    mt_real pdf = 0;
     mt_ray r;
     mt_hit hit;
     mt_surface sf;
-    if (s->kind == MT_SHAPE_SPHERE && mt__sphere_pdf_from(s, p, &pdf)) return pdf;
+    int more = s->kind != MT_SHAPE_TRIANGLES && s->kind != MT_SHAPE_DISK &&
+               (s->mode & MT_FIX_SHAPESET_HIT);
+    if (s->kind == MT_SHAPE_SPHERE && mt__sphere_pdf_from(s, p, wi, &pdf)) return pdf;
     /* pbrt-v2 Shape::Pdf: intersect the ray (p, wi, mint 1e-3) and convert
-     * the area density 1 / Area to solid angle */
+     * the area density 1 / Area to solid angle; with shapeset-hit fixed, a
+     * quadric's second point along the ray adds its own */
     r = mt_ray_make(p, wi, (mt_real)1e-3, MT_RAY_TMAX);
-    if (!mt_shape_intersect(s, prim, &r, &hit)) return 0;
-    mt_hit_surface(&hit, &r, &sf);
-    pdf = mt_v3_len2(mt_v3_sub(p, mt_ray_at(&r, hit.t))) /
-          (mt_v3_absdot(sf.dg.n, mt_v3_neg(wi)) * mt_shape_area(s, prim));
+    while (mt_shape_intersect(s, prim, &r, &hit)) {
+        mt_hit_surface(&hit, &r, &sf);
+        pdf += mt_v3_len2(mt_v3_sub(p, mt_ray_at(&r, hit.t))) /
+               (mt_v3_absdot(sf.dg.n, mt_v3_neg(wi)) * density_area(s, prim, &hit));
+        if (!more) break;
+        more = 0;
+        r.tmin = mt__next_toward(hit.t, MT_REAL_MAX);
+    }
     return mt_is_finite(pdf) ? pdf : 0;
 }
 
@@ -111,12 +154,14 @@ mt_vec3 mt_shape_set_sample_from(const mt_shape *s, mt_vec3 p, mt_real ucomp, mt
     int any = 0;
     /* pbrt-v2 ShapeSet::Sample: each primitive is intersected with the same
      * unbounded ray, and the last one hit (not the closest) gives the point
-     * and the normal. A single convex shape has only one candidate. */
+     * and the normal. Corrected (shapeset-hit): the ray shortens to each hit,
+     * so the closest one is kept. */
     for (i = 0; i < n; ++i)
         if (mt_shape_intersect(s, i, &r, &hit)) {
             last = hit;
             thit = hit.t;
             any = 1;
+            if (s->mode & MT_FIX_SHAPESET_HIT) r.tmax = hit.t;
         }
     if (any) {
         mt_surface sf;

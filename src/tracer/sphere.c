@@ -6,10 +6,21 @@
  * The intersection is solved in double precision in object space, with the
  * discriminant in the cancellation-free form r^2 |d|^2 - |o x d|^2 and the
  * hit point reprojected onto the sphere (pbrt-v3 3.9.4); its error bound is
- * gamma(5) |p| (in double). Sampling is pbrt-v2's, its limits included:
- * Sample(u1, u2) covers the whole sphere whatever zmin, zmax, phimax are,
- * and the cone sampling from outside uses the object-space radius with the
- * world-space centre (a sphere under Scale is sampled with the wrong cone).
+ * gamma(5) |p| (in double).
+ *
+ * Sampling is pbrt-v2's in pbrt-v2 mode, its limits included; corrected
+ * mode fixes two errata (neither is fixed in pbrt-v3):
+ * - partial-sampling (MT_FIX_PARTIAL_SAMPLING): Sample(u1, u2) covers the
+ *   whole sphere whatever zmin, zmax, phimax are, while Area() and Pdf()
+ *   describe the clipped sphere; corrected: uniform in area on the clipped
+ *   sphere, and a cone direction that misses it gives no sample (a zero
+ *   normal, so no emission, and pdf 0) where pbrt-v2 takes the ray's point
+ *   of closest approach to the centre.
+ * - quadric-scale (MT_FIX_QUADRIC_SCALE): the cone sampled from outside has
+ *   the object-space radius about the world-space centre (under Scale 2 the
+ *   cone of a sphere half the size); corrected: the world radius, and area
+ *   sampling where the transform is not a similarity (an ellipsoid has no
+ *   cone to sample).
  */
 #include "materia/frame.h"
 #include "materia/sampling.h"
@@ -151,9 +162,24 @@ void mt__sphere_surface(const mt_shape *s, const double ray_p[3], mt_surface *sf
 
 mt_real mt__sphere_area(const mt_shape *s) { return s->phi_max * s->radius * (s->zmax - s->zmin); }
 
+static int sphere_partial(const mt_shape *s)
+{
+    return s->zmin > -s->radius || s->zmax < s->radius || mt__phi_cut(s);
+}
+
 mt_vec3 mt__sphere_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns)
 {
-    mt_vec3 p = mt_v3_scale(mt_uniform_sample_sphere(u1, u2), s->radius);
+    mt_vec3 p;
+    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && sphere_partial(s)) {
+        /* uniform in area on the clipped sphere: z uniform in [zmin, zmax]
+         * (Archimedes' hat-box theorem), phi uniform in [0, phimax]; z runs
+         * down from zmax as pbrt-v2's UniformSampleSphere runs from +z */
+        mt_real z = mt_lerp(u1, s->zmax, s->zmin), phi = u2 * s->phi_max;
+        mt_real rr = mt_sqrt(mt_max(0, s->radius * s->radius - z * z));
+        p = mt_v3(rr * mt_cos(phi), rr * mt_sin(phi), z);
+    } else {
+        p = mt_v3_scale(mt_uniform_sample_sphere(u1, u2), s->radius);
+    }
     *ns = mt_v3_normalize(mt_transform_normal(&s->o2w, p));
     if (s->reverse_orientation) *ns = mt_v3_neg(*ns);
     return mt_transform_point(&s->o2w, p);
@@ -161,43 +187,92 @@ mt_vec3 mt__sphere_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns
 
 static mt_vec3 sphere_center(const mt_shape *s) { return mt_transform_point(&s->o2w, mt_v3(0, 0, 0)); }
 
+/* Whether the cone sampling applies: always in pbrt-v2 mode; with
+ * quadric-scale fixed, only under a similarity (radius in world units). */
+static int cone_radius(const mt_shape *s, mt_real *r)
+{
+    if (!(s->mode & MT_FIX_QUADRIC_SCALE)) {
+        *r = s->radius;
+        return 1;
+    }
+    *r = (mt_real)(s->radius * s->sim_scale);
+    return s->sim_scale > 0;
+}
+
 /* pbrt-v2: p counts as inside when DistanceSquared(p, centre) - r^2 < 1e-4. */
 static int sees_outside(const mt_shape *s, mt_vec3 p, mt_real *costhetamax)
 {
     mt_vec3 c = sphere_center(s);
-    mt_real d2 = mt_v3_len2(mt_v3_sub(p, c)), r2 = s->radius * s->radius;
+    mt_real rad, d2, r2;
+    if (!cone_radius(s, &rad)) return 0;
+    d2 = mt_v3_len2(mt_v3_sub(p, c));
+    r2 = rad * rad;
     if (d2 - r2 < (mt_real)1e-4) return 0;
     *costhetamax = mt_sqrt(mt_max(0, 1 - r2 / d2));
     return 1;
 }
 
+/* An area sample seen from p (an ellipsoid, where no cone applies). With
+ * shapeset-hit fixed it is moved, as ShapeSet does, to the first point of
+ * the shape on the ray from p through it, and the pdf of a direction sums
+ * over every point of the shape along it (mt_shape_pdf_from); without, it
+ * stays where it is and the pdf is that of the first point, which is the
+ * sampled one whenever the sample is not hidden behind the shape itself. */
+static mt_vec3 area_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2,
+                                mt_vec3 *ns)
+{
+    mt_vec3 ps = mt__sphere_sample(s, u1, u2, ns);
+    mt_ray r = mt_ray_make(p, mt_v3_sub(ps, p), (mt_real)1e-3, MT_RAY_TMAX);
+    mt_hit hit;
+    mt_surface sf;
+    if (!(s->mode & MT_FIX_SHAPESET_HIT) || !mt_shape_intersect(s, 0, &r, &hit)) return ps;
+    mt_hit_surface(&hit, &r, &sf);
+    *ns = sf.dg.n;
+    return mt_ray_at(&r, hit.t);
+}
+
 mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns)
 {
     mt_vec3 c = sphere_center(s), wc, wcx, wcy, ps;
-    mt_real costhetamax;
+    mt_real costhetamax, rad;
     mt_ray r;
     mt_hit hit;
+    if (!cone_radius(s, &rad)) return area_sample_from(s, p, u1, u2, ns);
     if (!sees_outside(s, p, &costhetamax)) return mt__sphere_sample(s, u1, u2, ns);
     wc = mt_v3_normalize(mt_v3_sub(c, p));
     mt_coordinate_system(wc, &wcx, &wcy);
     r = mt_ray_make(p, mt_uniform_sample_cone_frame(u1, u2, costhetamax, wcx, wcy, wc),
                     (mt_real)1e-3, MT_RAY_TMAX);
-    /* a direction at the cone's edge may graze past: pbrt-v2 then takes the
-     * point of closest approach to the centre */
-    if (!mt_shape_intersect(s, 0, &r, &hit))
+    if (!mt_shape_intersect(s, 0, &r, &hit)) {
+        /* a direction at the cone's edge may graze past: pbrt-v2 then takes
+         * the point of closest approach to the centre. A direction through
+         * the clipped part of a partial sphere meets nothing either: pbrt-v2
+         * does the same (a normal at right angles to the ray, which passes
+         * the emission test one time in two); corrected, no sample. */
         hit.t = mt_v3_dot(mt_v3_sub(c, p), mt_v3_normalize(r.d));
+        if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && sphere_partial(s)) {
+            *ns = mt_v3(0, 0, 0);
+            return mt_ray_at(&r, hit.t);
+        }
+    }
     ps = mt_ray_at(&r, hit.t);
     *ns = mt_v3_normalize(mt_v3_sub(ps, c));
     if (s->reverse_orientation) *ns = mt_v3_neg(*ns);
     return ps;
 }
 
-int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_real *pdf)
+int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi, mt_real *pdf)
 {
     mt_real costhetamax;
     if (!sees_outside(s, p, &costhetamax)) return 0;
     *pdf = mt_uniform_cone_pdf(costhetamax);
     /* a sphere too small to subtend a representable cone: pbrt-v2's Inf */
     if (!mt_is_finite(*pdf)) *pdf = 0;
+    /* pbrt-v2 answers for any direction; a partial sphere is reached only by
+     * the directions that meet it */
+    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && sphere_partial(s)) {
+        mt_ray r = mt_ray_make(p, wi, (mt_real)1e-3, MT_RAY_TMAX);
+        if (!mt_shape_occluded(s, 0, &r)) *pdf = 0;
+    }
     return 1;
 }

@@ -4,11 +4,25 @@
  *
  * As in pbrt-v2 the vertices are transformed to world space once; N and S
  * stay in object space and are transformed when the shading geometry is
- * computed. dpdu and dpdv come from the uvs (default (0,0), (1,0), (1,1));
- * when the uv triangle is degenerate pbrt-v2 takes an arbitrary frame about
- * Normalize(Cross(e2, e1)) -- the opposite of the winding's normal -- and so
- * does materia. The geometric normal follows dpdu x dpdv: it flips with a
- * mirrored uv mapping, as in pbrt-v2.
+ * computed. dpdu and dpdv come from the uvs (default (0,0), (1,0), (1,1)).
+ *
+ * Erratum triangle-facing (MT_FIX_TRIANGLE_FACING): pbrt-v2 has no single
+ * rule for the side a triangle faces. The normal of a hit follows dpdu x
+ * dpdv, so it turns over with a mirrored uv map, and when the uv triangle
+ * is degenerate pbrt-v2 takes a frame about Normalize(Cross(e2, e1)) -- the
+ * opposite of the winding's normal; Sample() takes the winding's normal
+ * negated under ReverseOrientation only, not under a mirroring transform
+ * as a hit's is; and with "S" but no "N" the shading normal starts from the
+ * hit's normal, already flipped, and is flipped again. pbrt-v2 mode keeps
+ * all four; corrected mode has pbrt-v3's rule (Triangle::Intersect, and
+ * pbrt-v4's Triangle::Sample): the winding's normal, negated under
+ * ReverseOrientation xor a handedness change, for hits and samples alike,
+ * and a shading normal from S alone that keeps the hit's side.
+ *
+ * Erratum normal-derivatives (MT_FIX_NORMAL_DERIVATIVES), shading part:
+ * pbrt-v2's dndu, dndv are the derivatives of the interpolated vertex
+ * normal before it is normalized, carried to world space as normals;
+ * corrected mode gives the derivatives of the unit shading normal itself.
  */
 #include <string.h>
 #include "core/alloc.h"
@@ -263,9 +277,12 @@ void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real 
     e1 = mt_v3_sub(p1, p0);
     e2 = mt_v3_sub(p2, p0);
     if (det == 0) {
-        /* pbrt-v2: CoordinateSystem(Normalize(Cross(e2, e1)), &dpdu, &dpdv) */
+        /* pbrt-v2: CoordinateSystem(Normalize(Cross(e2, e1)), &dpdu, &dpdv);
+         * corrected, about the winding's normal, so that dpdu x dpdv agrees
+         * with the normal */
         double w[3];
-        if (!unit_d(mt_v3_cross(e2, e1), w)) w[0] = w[1] = 0, w[2] = 1;
+        int facing = (s->mode & MT_FIX_TRIANGLE_FACING) != 0;
+        if (!unit_d(facing ? mt_v3_cross(e1, e2) : mt_v3_cross(e2, e1), w)) w[0] = w[1] = 0, w[2] = 1;
         mt_coordinate_system(mt_v3((mt_real)w[0], (mt_real)w[1], (mt_real)w[2]), &dg->dpdu,
                              &dg->dpdv);
     } else {
@@ -286,8 +303,11 @@ void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real 
     dg->dndu = dg->dndv = mt_v3(0, 0, 0);
     dg->flip = s->flip;
     /* pbrt-v2: nn = Normalize(Cross(dpdu, dpdv)), flipped; where that
-     * underflows or overflows, the winding normal with the uv map's sign */
-    if (!unit_d(mt_v3_cross(dg->dpdu, dg->dpdv), n)) {
+     * underflows or overflows, the winding normal with the uv map's sign.
+     * Corrected: the winding's normal whatever the uvs (pbrt-v3). */
+    if (s->mode & MT_FIX_TRIANGLE_FACING) {
+        if (!unit_d(mt_v3_cross(e1, e2), n)) n[0] = n[1] = 0, n[2] = 1;
+    } else if (!unit_d(mt_v3_cross(dg->dpdu, dg->dpdv), n)) {
         if (!unit_d(mt_v3_cross(e1, e2), n)) n[0] = n[1] = 0, n[2] = 1;
         if (det < 0)
             for (i = 0; i < 3; ++i) n[i] = -n[i];
@@ -305,15 +325,24 @@ static mt_vec3 interp(const mt_vec3 *a, const int *v, const mt_real b[3])
                  b[0] * a[v[0]].z + b[1] * a[v[1]].z + b[2] * a[v[2]].z);
 }
 
+/* The derivative of the unit vector w / |w| along a direction in which w
+ * changes by dw: (dw - m (m . dw)) / |w| with m = w / |w|. */
+static mt_vec3 unit_derivative(mt_vec3 w, mt_vec3 dw)
+{
+    mt_real len = mt_v3_len(w);
+    mt_vec3 m = mt_v3_scale(w, 1 / len);
+    return mt_v3_scale(mt_v3_sub(dw, mt_v3_scale(m, mt_v3_dot(m, dw))), 1 / len);
+}
+
 void mt__triangle_shading(const mt_surface *sf, mt_diffgeom *sh)
 {
     const mt_shape *s = sf->shape;
     const mt_diffgeom *dg = &sf->dg;
     const int *v = s->indices + 3 * (size_t)sf->prim;
     mt_real uv[3][2], b[3];
-    mt_vec3 ns, ss, ts;
+    mt_vec3 ns, ss, ts, w = mt_v3(0, 0, 0);
     double n[3];
-    int i;
+    int i, from_n = 0, fixed = (s->mode & MT_FIX_NORMAL_DERIVATIVES) != 0;
     if (!s->N && !s->S) {
         *sh = *dg;
         return;
@@ -330,8 +359,11 @@ void mt__triangle_shading(const mt_surface *sf, mt_diffgeom *sh)
     if (s->N) {
         /* a zero interpolated normal (opposed vertex normals) would be NaN in
          * pbrt-v2: the geometric normal stands in */
-        mt_vec3 w = mt_transform_normal(&s->o2w, interp(s->N, v, b));
-        if (mt_v3_len2(w) > 0 && mt_v3_is_finite(w)) ns = mt_v3_normalize(w);
+        w = mt_transform_normal(&s->o2w, interp(s->N, v, b));
+        if (mt_v3_len2(w) > 0 && mt_v3_is_finite(w)) {
+            ns = mt_v3_normalize(w);
+            from_n = 1;
+        }
     }
     ss = dg->dpdu;
     if (s->S) ss = mt_transform_vector(&s->o2w, interp(s->S, v, b));
@@ -346,26 +378,33 @@ void mt__triangle_shading(const mt_surface *sf, mt_diffgeom *sh)
     *sh = *dg;
     sh->dpdu = ss;
     sh->dpdv = ts;
+    sh->dndu = sh->dndv = mt_v3(0, 0, 0);
     if (s->N) {
         mt_real du1 = uv[0][0] - uv[2][0], du2 = uv[1][0] - uv[2][0];
         mt_real dv1 = uv[0][1] - uv[2][1], dv2 = uv[1][1] - uv[2][1];
         mt_real det = du1 * dv2 - dv1 * du2;
         mt_vec3 dn1 = mt_v3_sub(s->N[v[0]], s->N[v[2]]), dn2 = mt_v3_sub(s->N[v[1]], s->N[v[2]]);
-        if (det == 0) {
-            sh->dndu = sh->dndv = mt_v3(0, 0, 0);
-        } else {
+        if (det != 0) {
             mt_real inv = 1 / det;
-            sh->dndu = mt_transform_normal(
+            mt_vec3 du = mt_transform_normal(
                 &s->o2w, mt_v3_scale(mt_v3_sub(mt_v3_scale(dn1, dv2), mt_v3_scale(dn2, dv1)), inv));
-            sh->dndv = mt_transform_normal(
+            mt_vec3 dv = mt_transform_normal(
                 &s->o2w, mt_v3_scale(mt_v3_add(mt_v3_scale(dn1, -du2), mt_v3_scale(dn2, du1)), inv));
+            if (fixed && from_n) {
+                /* the derivatives of the shading normal, +-w / |w| */
+                mt_real sign = s->flip ? -1 : 1;
+                du = mt_v3_scale(unit_derivative(w, du), sign);
+                dv = mt_v3_scale(unit_derivative(w, dv), sign);
+            }
+            sh->dndu = du;
+            sh->dndv = dv;
         }
-    } else {
-        sh->dndu = sh->dndv = mt_v3(0, 0, 0);
     }
-    /* DifferentialGeometry(p, ss, ts, ...): nn = Normalize(Cross(ss, ts)), flipped */
+    /* DifferentialGeometry(p, ss, ts, ...): nn = Normalize(Cross(ss, ts)),
+     * flipped -- a second time when ns was the hit's normal (corrected:
+     * once) */
     if (!unit_d(mt_v3_cross(ss, ts), n)) n[0] = ns.x, n[1] = ns.y, n[2] = ns.z;
-    if (s->flip)
+    if (s->flip && (from_n || !(s->mode & MT_FIX_TRIANGLE_FACING)))
         for (i = 0; i < 3; ++i) n[i] = -n[i];
     sh->n = mt_v3((mt_real)n[0], (mt_real)n[1], (mt_real)n[2]);
 }
@@ -390,10 +429,11 @@ mt_vec3 mt__triangle_sample(const mt_shape *s, uint32_t prim, mt_real u1, mt_rea
     b3 = 1 - b1 - b2;
     /* pbrt-v2 Triangle::Sample: the winding normal, negated under
      * ReverseOrientation only (not under a mirroring transform, unlike the
-     * normal of an intersection) */
+     * normal of an intersection); corrected (triangle-facing), negated as a
+     * hit's is */
     if (!unit_d(mt_v3_cross(mt_v3_sub(p2, p1), mt_v3_sub(p3, p1)), n)) n[0] = n[1] = 0, n[2] = 1;
     *ns = mt_v3((mt_real)n[0], (mt_real)n[1], (mt_real)n[2]);
-    if (s->reverse_orientation) *ns = mt_v3_neg(*ns);
+    if ((s->mode & MT_FIX_TRIANGLE_FACING) ? s->flip : s->reverse_orientation) *ns = mt_v3_neg(*ns);
     return mt_v3(b1 * p1.x + b2 * p2.x + b3 * p3.x, b1 * p1.y + b2 * p2.y + b3 * p3.y,
                  b1 * p1.z + b2 * p2.z + b3 * p3.z);
 }

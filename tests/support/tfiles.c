@@ -20,6 +20,15 @@ const char *t_tmpdir_create(const char *tag)
     return tmpdir;
 }
 
+const char *t_tmp_path(const char *name)
+{
+    static char buf[8][1100];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
+    return buf[k];
+}
+
 void t_tmpdir_remove(void)
 {
     char cmd[600];

@@ -10,6 +10,9 @@
 /* Creates a new empty directory; returns its path (static storage, one at a
  * time) or NULL. */
 const char *t_tmpdir_create(const char *tag);
+/* dir/name in the directory t_tmpdir_create made (static storage: eight
+ * buffers used in turn, so that a call may take several such paths). */
+const char *t_tmp_path(const char *name);
 /* Removes the directory t_tmpdir_create made, with everything in it. */
 void t_tmpdir_remove(void);
 /* Writes len bytes (len = (size_t)-1: strlen(text)) to dir/rel, creating the

@@ -5,6 +5,7 @@
 typedef struct one_shape {
     const mt_transform *o2w;
     int ro, nwarn;
+    mt_mode mode;
     mt_shape *shape;
 } one_shape;
 
@@ -20,8 +21,10 @@ static mt_status take_shape(void *ctx, const mt_statement *st, mt_error *err)
 {
     one_shape *o = ctx;
     mt_shape_options opt;
+    memset(&opt, 0, sizeof opt);
     opt.warn = count_warning;
     opt.warn_ctx = o;
+    opt.mode = o->mode;
     if (strcmp(st->directive, "Shape") != 0 || o->shape) return MT_OK;
     o->shape = mt_shape_from_statement(st, o->o2w, o->ro, &opt, err);
     return o->shape ? MT_OK : err->status;
@@ -30,10 +33,17 @@ static mt_status take_shape(void *ctx, const mt_statement *st, mt_error *err)
 mt_shape *t_shape(const char *text, const mt_transform *o2w, int reverse_orientation,
                   int *nwarn, mt_error *err)
 {
+    return t_shape_mode(text, o2w, reverse_orientation, MT_MODE_PBRT_V2, nwarn, err);
+}
+
+mt_shape *t_shape_mode(const char *text, const mt_transform *o2w, int reverse_orientation,
+                       mt_mode mode, int *nwarn, mt_error *err)
+{
     mt_transform id = mt_transform_identity();
     one_shape o;
     o.o2w = o2w ? o2w : &id;
     o.ro = reverse_orientation;
+    o.mode = mode;
     o.nwarn = 0;
     o.shape = NULL;
     mt_error_clear(err);

@@ -12,6 +12,9 @@
  * in *nwarn when nwarn is not NULL. */
 mt_shape *t_shape(const char *text, const mt_transform *o2w, int reverse_orientation,
                   int *nwarn, mt_error *err);
+/* The same in a given mode (t_shape: pbrt-v2 mode). */
+mt_shape *t_shape_mode(const char *text, const mt_transform *o2w, int reverse_orientation,
+                       mt_mode mode, int *nwarn, mt_error *err);
 
 /* Attaches every Shape of a scene file to g (not committed). Only the
  * statements that place shapes are followed -- AttributeBegin/End,
