@@ -44,6 +44,14 @@ typedef struct irreg_sum {
     int found;
 } irreg_sum;
 
+static void irreg_sum_init(irreg_sum *s, const mt_rgb *values)
+{
+    s->values = values;
+    s->v = mt_rgb_black();
+    s->sum_weights = 0;
+    s->found = 0;
+}
+
 static void irreg_add(void *ctx, int item, mt_real d2, mt_real *max_d2)
 {
     irreg_sum *s = ctx;
@@ -54,8 +62,52 @@ static void irreg_add(void *ctx, int item, mt_real d2, mt_real *max_d2)
     s->found++;
 }
 
+/* The samples within a search radius, in the k-d tree's visiting order. */
+#define IRREG_KEEP 32
+typedef struct irreg_found {
+    int n, overflow;
+    int item[IRREG_KEEP];
+    mt_real d2[IRREG_KEEP];
+} irreg_found;
+
+static void irreg_keep(void *ctx, int item, mt_real d2, mt_real *max_d2)
+{
+    irreg_found *f = ctx;
+    if (f->n == IRREG_KEEP) {
+        /* the list is of no use now: a zero radius ends the search */
+        f->overflow = 1;
+        *max_d2 = 0;
+        return;
+    }
+    f->item[f->n] = item;
+    f->d2[f->n++] = d2;
+}
+
+/* pbrt-v2's value from the sum of the try that ends the search. */
+static mt_rgb irreg_result(const irreg_sum *s)
+{
+    /* erratum measured-empty: pbrt-v2 returns 0/0 when no sample has weight
+     * (none found, or every exp(-100 d2) underflowed) */
+    if (s->sum_weights == 0) return mt_rgb_black();
+    return mt_rgb_divs(mt_rgb_clamp0(s->v), s->sum_weights);
+}
+
 /* pbrt-v2 IrregIsotropicBRDF::f: squared search radius 0.001, doubled until
- * more than 2 samples are found or it exceeds 1.5 (the last try is 2.048). */
+ * more than 2 samples are found or it exceeds 1.5 (the last try is 2.048).
+ *
+ * Most directions need two to four tries (radii 0.001 to 0.008), and each
+ * try searched the tree again. Here one search at eight times the radius
+ * keeps the samples it finds in visiting order, and the four tries within
+ * it are read from that list: a try at radius r hands pbrt-v2's callback
+ * exactly the kept samples with d2 < r, in the same order, because the
+ * visiting order does not depend on the radius and a subtree the smaller
+ * search skips (squared distance to its plane >= r) holds no sample with
+ * d2 < r (the rounded d2 is at least the rounded plane distance). Sums and
+ * counts are therefore the same bits. More than IRREG_KEEP samples within
+ * the wide radius end that search, and its tries are made one by one as
+ * pbrt-v2 makes them. (Callgrind, measured scene at 4 spp: 1148 M
+ * instructions before, 1073 M with 8x and 32 kept; 4x or 16x, or 16, 64 or
+ * 128 kept, do less well.) */
 static mt_rgb irreg_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
 {
     const mt_measured *d = ((const measured_bxdf *)b)->data;
@@ -65,20 +117,23 @@ static mt_rgb irreg_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
     p[1] = m.y;
     p[2] = m.z;
     for (;;) {
+        irreg_found f;
         irreg_sum s;
-        mt_real max_d2 = last;
-        s.values = d->values;
-        s.v = mt_rgb_black();
-        s.sum_weights = 0;
-        s.found = 0;
-        mt__kdtree_lookup(&d->tree, p, irreg_add, &s, &max_d2);
-        if (s.found > 2 || last > (mt_real)1.5) {
-            /* erratum measured-empty: pbrt-v2 returns 0/0 when no sample has
-             * weight (none found, or every exp(-100 d2) underflowed) */
-            if (s.sum_weights == 0) return mt_rgb_black();
-            return mt_rgb_divs(mt_rgb_clamp0(s.v), s.sum_weights);
+        mt_real max_d2 = 8 * last;
+        int k, i;
+        f.n = f.overflow = 0;
+        mt__kdtree_lookup(&d->tree, p, irreg_keep, &f, &max_d2);
+        for (k = 0; k < 4; ++k, last *= 2) {
+            irreg_sum_init(&s, d->values);
+            if (f.overflow) {
+                max_d2 = last;
+                mt__kdtree_lookup(&d->tree, p, irreg_add, &s, &max_d2);
+            } else {
+                for (i = 0; i < f.n; ++i)
+                    if (f.d2[i] < last) irreg_add(&s, f.item[i], f.d2[i], &max_d2);
+            }
+            if (s.found > 2 || last > (mt_real)1.5) return irreg_result(&s);
         }
-        last *= 2;
     }
 }
 

@@ -33,22 +33,64 @@
 #define ALWAYS_INLINE
 #endif
 
+/* Exit distances are scaled by 1 + 2 gamma(3) (Ize), and a node is skipped
+ * only when it starts beyond the current closest hit by more than the error
+ * of either distance (a few ulps), so that equal or nearly equal hits on box
+ * faces -- shared vertices and edges -- are all seen and resolved by id, as
+ * a brute-force search resolves them. */
+#define EXIT_SCALE (1 + 2 * mt__gamma(3))
+#define PRUNE_SCALE (1 + 64 * MT_REAL_EPSILON)
+
 typedef struct trav {
 #if USE_SSE
     __m128 vo[3], vi[3], vf[3]; /* origin, inverse direction, its scaled copy */
     __m128 to[3], ts[3];        /* the triangle test's o[kx], o[ky], o[kz] and sx, sy, sz */
-    __m128 g2, g3, g5;          /* gamma(2), gamma(3), gamma(5) */
-#endif
-    mt__tri_ray tr;
+#else
     mt_real o[3], inv[3], inv_far[3];
     int nx, ny, nz; /* rows of the near planes: 0/1, 2/3, 4/5 by direction sign */
+#endif
     size_t off[6];  /* byte offsets in a node of the near x, y, z and far x, y, z rows */
-    mt_real exit_scale, prune_scale;
+    const mt_ray *ray;
+    int tri_ready;  /* tr (and to, ts) set up: at the first triangle leaf */
+    mt__tri_ray tr;
 } trav;
 
-static void trav_init(trav *t, const mt_ray *r)
+#if USE_SSE
+/* Lane i of v in all four lanes. */
+#define SPLAT(v, i) _mm_shuffle_ps((v), (v), _MM_SHUFFLE(i, i, i, i))
+
+/* The box test's part of the set-up: one division for the three inverse
+ * components (the same quotients as three scalar divisions), the near rows
+ * from their signs. */
+static inline ALWAYS_INLINE void trav_init(trav *t, const mt_ray *r)
 {
-    mt__tri_ray_init(&t->tr, r);
+    __m128 o = _mm_setr_ps(r->o.x, r->o.y, r->o.z, 0);
+    __m128 inv = _mm_div_ps(_mm_set1_ps(1), _mm_setr_ps(r->d.x, r->d.y, r->d.z, 1));
+    __m128 far = _mm_mul_ps(inv, _mm_set1_ps(EXIT_SCALE));
+    unsigned neg = (unsigned)_mm_movemask_ps(_mm_cmplt_ps(inv, _mm_setzero_ps()));
+    size_t row = sizeof(mt_real[4]);
+    t->vo[0] = SPLAT(o, 0);
+    t->vo[1] = SPLAT(o, 1);
+    t->vo[2] = SPLAT(o, 2);
+    t->vi[0] = SPLAT(inv, 0);
+    t->vi[1] = SPLAT(inv, 1);
+    t->vi[2] = SPLAT(inv, 2);
+    t->vf[0] = SPLAT(far, 0);
+    t->vf[1] = SPLAT(far, 1);
+    t->vf[2] = SPLAT(far, 2);
+    t->off[0] = (neg & 1) * row;
+    t->off[1] = (2 + ((neg >> 1) & 1)) * row;
+    t->off[2] = (4 + ((neg >> 2) & 1)) * row;
+    t->off[3] = t->off[0] ^ row;
+    t->off[4] = t->off[1] ^ row;
+    t->off[5] = t->off[2] ^ row;
+    t->ray = r;
+    t->tri_ready = 0;
+}
+#else
+static inline ALWAYS_INLINE void trav_init(trav *t, const mt_ray *r)
+{
+    int i;
     t->o[0] = r->o.x;
     t->o[1] = r->o.y;
     t->o[2] = r->o.z;
@@ -64,36 +106,28 @@ static void trav_init(trav *t, const mt_ray *r)
     t->off[3] = (size_t)(t->nx ^ 1) * sizeof(mt_real[4]);
     t->off[4] = (size_t)(t->ny ^ 1) * sizeof(mt_real[4]);
     t->off[5] = (size_t)(t->nz ^ 1) * sizeof(mt_real[4]);
-    /* exit distances scaled by 1 + 2 gamma(3): folded into the inverse
-     * (the same number of roundings as scaling each distance) */
-    t->exit_scale = 1 + 2 * mt__gamma(3);
-    t->inv_far[0] = t->inv[0] * t->exit_scale;
-    t->inv_far[1] = t->inv[1] * t->exit_scale;
-    t->inv_far[2] = t->inv[2] * t->exit_scale;
-#if USE_SSE
-    {
-        int i;
-        for (i = 0; i < 3; ++i) {
-            t->vo[i] = _mm_set1_ps(t->o[i]);
-            t->vi[i] = _mm_set1_ps(t->inv[i]);
-            t->vf[i] = _mm_set1_ps(t->inv_far[i]);
-        }
-        t->to[0] = _mm_set1_ps(t->tr.o[t->tr.kx]);
-        t->to[1] = _mm_set1_ps(t->tr.o[t->tr.ky]);
-        t->to[2] = _mm_set1_ps(t->tr.o[t->tr.kz]);
-        t->ts[0] = _mm_set1_ps(t->tr.sx);
-        t->ts[1] = _mm_set1_ps(t->tr.sy);
-        t->ts[2] = _mm_set1_ps(t->tr.sz);
-        t->g2 = _mm_set1_ps(mt__gamma(2));
-        t->g3 = _mm_set1_ps(mt__gamma(3));
-        t->g5 = _mm_set1_ps(mt__gamma(5));
-    }
+    /* folded into the inverse: the same number of roundings as scaling
+     * each distance */
+    for (i = 0; i < 3; ++i) t->inv_far[i] = t->inv[i] * EXIT_SCALE;
+    t->ray = r;
+    t->tri_ready = 0;
+}
 #endif
-    /* a node is skipped only when it starts beyond the current closest hit
-     * by more than the error of either distance (a few ulps), so that equal
-     * or nearly equal hits on box faces -- shared vertices and edges -- are
-     * all seen and resolved by id, as a brute-force search resolves them */
-    t->prune_scale = 1 + 64 * MT_REAL_EPSILON;
+
+/* The triangle test's part: the shear of mt__tri_ray_init, at the first
+ * triangle leaf (a ray that meets only quadrics never needs it). */
+static inline void trav_init_tri(trav *t)
+{
+    mt__tri_ray_init(&t->tr, t->ray);
+#if USE_SSE
+    t->to[0] = _mm_set1_ps(t->tr.o[t->tr.kx]);
+    t->to[1] = _mm_set1_ps(t->tr.o[t->tr.ky]);
+    t->to[2] = _mm_set1_ps(t->tr.o[t->tr.kz]);
+    t->ts[0] = _mm_set1_ps(t->tr.sx);
+    t->ts[1] = _mm_set1_ps(t->tr.sy);
+    t->ts[2] = _mm_set1_ps(t->tr.sz);
+#endif
+    t->tri_ready = 1;
 }
 
 /* Entry distances of the ray into the four children within [tmin, tmax];
@@ -209,14 +243,14 @@ static inline ALWAYS_INLINE unsigned tri4_hits(const trav *t, const mt__tri4 *q,
     mzt = _mm_max_ps(_mm_and_ps(az, absm), _mm_max_ps(_mm_and_ps(bz, absm), _mm_and_ps(cz, absm)));
     mxt = _mm_max_ps(_mm_and_ps(ax, absm), _mm_max_ps(_mm_and_ps(bx, absm), _mm_and_ps(cx, absm)));
     myt = _mm_max_ps(_mm_and_ps(ay, absm), _mm_max_ps(_mm_and_ps(by, absm), _mm_and_ps(cy, absm)));
-    dz = _mm_mul_ps(t->g3, mzt);
-    dx = _mm_mul_ps(t->g5, _mm_add_ps(mxt, mzt));
-    dy = _mm_mul_ps(t->g5, _mm_add_ps(myt, mzt));
-    de = _mm_mul_ps(_mm_set1_ps(2), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(t->g2, mxt), myt),
+    dz = _mm_mul_ps(_mm_set1_ps(mt__gamma(3)), mzt);
+    dx = _mm_mul_ps(_mm_set1_ps(mt__gamma(5)), _mm_add_ps(mxt, mzt));
+    dy = _mm_mul_ps(_mm_set1_ps(mt__gamma(5)), _mm_add_ps(myt, mzt));
+    de = _mm_mul_ps(_mm_set1_ps(2), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(mt__gamma(2)), mxt), myt),
                                                           _mm_mul_ps(dy, mxt)),
                                                _mm_mul_ps(dx, myt)));
     me = _mm_max_ps(_mm_and_ps(e0, absm), _mm_max_ps(_mm_and_ps(e1, absm), _mm_and_ps(e2, absm)));
-    dt = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(3), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(t->g3, me), mzt),
+    dt = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(3), _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(mt__gamma(3)), me), mzt),
                                                                      _mm_mul_ps(de, mzt)),
                                                           _mm_mul_ps(dz, me))),
                     _mm_and_ps(inv, absm));
@@ -284,11 +318,13 @@ static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, 
     bs->quad = 0;
     if (g->stats.prims == 0) return 0;
     trav_init(&t, r);
-    {
+    /* a leaf at the root is entered only through the scene's box; an inner
+     * root's own test of its children costs the same as that box's */
+    if (cur.count != 0) {
         mt_real tn[4];
         if (!(node_hits(&t, &g->root_node, vtmin, to_bound(tmax), tn) & 1)) return 0;
     }
-    limit = tmax * t.prune_scale;
+    limit = tmax * PRUNE_SCALE;
     vlimit = to_bound(limit);
     for (;;) {
         if (cur.count == 0) {
@@ -333,6 +369,7 @@ static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, 
             }
         } else if (cur.kind == MT__LEAF_TRIS) {
             uint32_t p, np = (cur.count + 3u) / 4u;
+            if (!t.tri_ready) trav_init_tri(&t);
             for (p = 0; p < np; ++p) {
                 const mt__tri4 *q = &g->tri[cur.index + p];
                 const uint32_t *ids = g->tri_id + 4 * ((size_t)cur.index + p);
@@ -360,7 +397,7 @@ static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, 
                         bs->id = ids[i];
                         bs->found = 1;
                         bs->quad = 0;
-                        limit = tmax * t.prune_scale;
+                        limit = tmax * PRUNE_SCALE;
                         vlimit = to_bound(limit);
                     }
                 }
@@ -380,7 +417,7 @@ static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, 
                     bs->found = 1;
                     bs->quad = 1;
                     bs->qhit = h;
-                    limit = tmax * t.prune_scale;
+                    limit = tmax * PRUNE_SCALE;
                     vlimit = to_bound(limit);
                 }
             }

@@ -97,13 +97,24 @@ void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff 
         ryo = mt_v3_add(o, c->dy_camera);
         rxd = ryd = d;
     } else {
-        o = mt_v3(0, 0, 0);
         d = mt_v3_normalize(pc);
-        if (c->lens_radius > 0) thin_lens(c, s, &o, &d);
-        /* pbrt-v2: the neighbours keep the pinhole directions and the lens origin */
-        rxo = ryo = o;
         rxd = mt_v3_normalize(mt_v3_add(pc, c->dx_camera));
         ryd = mt_v3_normalize(mt_v3_add(pc, c->dy_camera));
+        if (c->lens_radius > 0) {
+            o = mt_v3(0, 0, 0);
+            thin_lens(c, s, &o, &d);
+        } else {
+            /* the pinhole: every ray leaves the camera's world position */
+            mt_vec3 ow = mt_v3(c->c2w[0][3], c->c2w[1][3], c->c2w[2][3]);
+            rd->ray = mt_ray_make(ow, to_world_vector(c, d), 0, MT_RAY_TMAX);
+            rd->has_differentials = 1;
+            rd->rx_o = rd->ry_o = ow;
+            rd->rx_d = to_world_vector(c, rxd);
+            rd->ry_d = to_world_vector(c, ryd);
+            return;
+        }
+        /* pbrt-v2: the neighbours keep the pinhole directions and the lens origin */
+        rxo = ryo = o;
     }
     rd->ray = mt_ray_make(to_world_point(c, o), to_world_vector(c, d), 0, MT_RAY_TMAX);
     rd->has_differentials = 1;

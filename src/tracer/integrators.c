@@ -30,7 +30,7 @@ void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n,
 {
     if (vertex < MT__LD_VERTICES) {
         uint32_t dim = MT__DIM_VERTEX0 + (uint32_t)vertex * 0x10000u + k;
-        uint32_t index = tc->index * (uint32_t)n + (uint32_t)j;
+        uint32_t rindex = n == 1 ? tc->rindex : mt__reverse_bits(tc->index * (uint32_t)n + (uint32_t)j);
         mt__dim_seeds local, *ds = &local;
         if (k < MT__SEED_CACHE_PAIRS) {
             mt__seed_slot *slot = &tc->seed_cache[vertex][k];
@@ -42,7 +42,7 @@ void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n,
         } else {
             mt__dim_seeds_init(&tc->sampler, dim, ds);
         }
-        mt__sample_2d_seeded(tc->sampler.tables, ds, index, out);
+        mt__sample_2d_rev(tc->sampler.tables, ds, rindex, out);
         return;
     }
     if (!tc->rng_ready) {

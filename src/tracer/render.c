@@ -77,13 +77,14 @@ static void render_tile(render_job *job, mt__thread_ctx *tc, int t, mt__film_buf
                 mt_real u[2];
                 mt_rgb L;
                 tc->index = (uint32_t)i;
+                tc->rindex = mt__reverse_bits((uint32_t)i);
                 tc->rng_ready = 0;
-                mt__sample_2d_seeded(&job->tables, &image_seeds, (uint32_t)i, u);
+                mt__sample_2d_rev(&job->tables, &image_seeds, tc->rindex, u);
                 cs.image_x = (mt_real)x + u[0];
                 cs.image_y = (mt_real)y + u[1];
                 cs.lens_u = cs.lens_v = (mt_real)0.5;
                 if (s->camera.lens_radius > 0) {
-                    mt__sample_2d_seeded(&job->tables, &lens_seeds, (uint32_t)i, u);
+                    mt__sample_2d_rev(&job->tables, &lens_seeds, tc->rindex, u);
                     cs.lens_u = u[0];
                     cs.lens_v = u[1];
                 }

@@ -49,6 +49,86 @@ typedef struct mt__dim_seeds {
 } mt__dim_seeds;
 
 void mt__dim_seeds_init(const mt__pixel_sampler *ps, uint32_t dim, mt__dim_seeds *ds);
+/* v with its 32 bits in reverse order. */
+static inline uint32_t mt__reverse_bits(uint32_t v)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    v = __builtin_bswap32(v);
+#else
+    v = (v << 24) | ((v & 0xff00u) << 8) | ((v >> 8) & 0xff00u) | (v >> 24);
+#endif
+    v = ((v & 0x0f0f0f0fu) << 4) | ((v >> 4) & 0x0f0f0f0fu);
+    v = ((v & 0x33333333u) << 2) | ((v >> 2) & 0x33333333u);
+    v = ((v & 0x55555555u) << 1) | ((v >> 1) & 0x55555555u);
+    return v;
+}
+
+/* v with its 64 bits in reverse order: for (a << 32 | b), reversed b in the
+ * high half and reversed a in the low half. */
+static inline uint64_t mt__reverse_bits64(uint64_t v)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    v = __builtin_bswap64(v);
+#else
+    v = (v >> 32) | (v << 32);
+    v = ((v & 0x0000ffff0000ffffull) << 16) | ((v >> 16) & 0x0000ffff0000ffffull);
+    v = ((v & 0x00ff00ff00ff00ffull) << 8) | ((v >> 8) & 0x00ff00ff00ff00ffull);
+#endif
+    v = ((v & 0x0f0f0f0f0f0f0f0full) << 4) | ((v >> 4) & 0x0f0f0f0f0f0f0f0full);
+    v = ((v & 0x3333333333333333ull) << 2) | ((v >> 2) & 0x3333333333333333ull);
+    v = ((v & 0x5555555555555555ull) << 1) | ((v >> 1) & 0x5555555555555555ull);
+    return v;
+}
+
+/* The Laine-Karras permutation with Burley's constants: each output bit
+ * depends only on the input bits below it, so in bit-reversed order it is a
+ * nested uniform (Owen) scramble. */
+static inline uint32_t mt__lk_permute(uint32_t x, uint32_t seed)
+{
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return x;
+}
+
+/* The point whose index, bits reversed, is rindex (a camera sample's pairs
+ * share their index, so its reversal is done once): x in the low half, y in
+ * the high half. */
+static inline uint64_t mt__sample_bits(const mt__sobol_tables *t, const mt__dim_seeds *ds,
+                                       uint32_t rindex)
+{
+    /* nested uniform shuffle of the index (Burley section 4) */
+    uint32_t i = mt__reverse_bits(mt__lk_permute(rindex, ds->shuffle));
+    /* the Sobol' coordinates in bit-reversed order: van der Corput reversed is
+     * the index itself; the second dimension through the byte tables */
+    uint32_t y = t->t[0][i & 0xff] ^ t->t[1][(i >> 8) & 0xff] ^ t->t[2][(i >> 16) & 0xff] ^
+                 t->t[3][i >> 24];
+    /* Owen scrambling of each coordinate, then both back to natural bit order */
+    return mt__reverse_bits64(((uint64_t)mt__lk_permute(i, ds->sx) << 32) | mt__lk_permute(y, ds->sy));
+}
+
+/* A 32-bit integer to [0, 1): the top bits that mt_real represents exactly,
+ * never 1. */
+static inline mt_real mt__u32_to_unit(uint32_t v)
+{
+#if MT_USE_DOUBLE
+    return (mt_real)v * (mt_real)0x1p-32;
+#else
+    return (mt_real)(v >> 8) * (mt_real)0x1p-24;
+#endif
+}
+
+/* The point whose reversed index is rindex, in [0, 1). */
+static inline void mt__sample_2d_rev(const mt__sobol_tables *t, const mt__dim_seeds *ds,
+                                     uint32_t rindex, mt_real out[2])
+{
+    uint64_t both = mt__sample_bits(t, ds, rindex);
+    out[0] = mt__u32_to_unit((uint32_t)both);
+    out[1] = mt__u32_to_unit((uint32_t)(both >> 32));
+}
+
 /* Point `index` of the pair with seeds ds: 32-bit coordinates, and in [0, 1). */
 void mt__sample_2d_seeded_bits(const mt__sobol_tables *t, const mt__dim_seeds *ds, uint32_t index,
                                uint32_t out[2]);
@@ -61,16 +141,5 @@ void mt__sample_2d(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index, mt
 /* The raw 32-bit coordinates (tests check the net property on them). */
 void mt__sample_2d_bits(const mt__pixel_sampler *ps, uint32_t dim, uint32_t index,
                         uint32_t out[2]);
-
-/* A 32-bit integer to [0, 1): the top bits that mt_real represents exactly,
- * never 1. */
-static inline mt_real mt__u32_to_unit(uint32_t v)
-{
-#if MT_USE_DOUBLE
-    return (mt_real)v * (mt_real)0x1p-32;
-#else
-    return (mt_real)(v >> 8) * (mt_real)0x1p-24;
-#endif
-}
 
 #endif

@@ -64,6 +64,7 @@ typedef struct mt__thread_ctx {
     uint32_t pixel_gen; /* changes with every pixel: invalidates the cache */
     mt__seed_slot seed_cache[MT__LD_VERTICES][MT__SEED_CACHE_PAIRS];
     uint32_t index;   /* the camera sample's index in its pixel */
+    uint32_t rindex;  /* index with its bits reversed (mt__sample_2d_rev) */
     mt_rng rng;       /* dimensions beyond the low-discrepancy ones */
     int rng_ready;    /* rng seeded for this camera sample (seeded on first use) */
     long shading_failures;

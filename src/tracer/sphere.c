@@ -62,21 +62,42 @@ mt_status mt__sphere_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
     return MT_OK;
 }
 
-/* The point at t pulled onto the sphere, and pbrt-v2's clipping test. */
-static int sphere_point(const mt_shape *s, const mt__oray *r, double t, double p[3])
+/* p pulled onto the sphere of radius rad (pbrt-v3 3.9.4's reprojection). */
+static void reproject(double rad, double p[3])
 {
-    double rad = s->radius, len, phi;
+    double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     int i;
-    for (i = 0; i < 3; ++i) p[i] = r->o[i] + t * r->d[i];
-    len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     if (len > 0)
         for (i = 0; i < 3; ++i) p[i] *= rad / len;
+}
+
+static void ray_point(const mt__oray *r, double t, double p[3])
+{
+    int i;
+    for (i = 0; i < 3; ++i) p[i] = r->o[i] + t * r->d[i];
+}
+
+/* Whether zmin, zmax or phimax cut anything away. */
+static int clipped(const mt_shape *s)
+{
+    return s->zmin > -s->radius || s->zmax < s->radius || mt__phi_cut(s);
+}
+
+/* pbrt-v2's clipping test of the point at t, pulled onto the sphere. */
+static int sphere_point(const mt_shape *s, const mt__oray *r, double t, double p[3])
+{
+    double rad = s->radius, phi;
+    ray_point(r, t, p);
+    reproject(rad, p);
     if ((s->zmin > -rad && p[2] < s->zmin) || (s->zmax < rad && p[2] > s->zmax)) return 0;
     if (!mt__phi_cut(s)) return 1;
     phi = p[0] == 0 && p[1] == 0 ? 0 : mt__phi(p[0], p[1]);
     return !(phi > s->phi_max);
 }
 
+/* The hit point p is returned as o + t d: mt__sphere_surface pulls it onto
+ * the sphere, so that the candidates a BVH query rejects cost no square
+ * root. A whole sphere needs no point to choose its root. */
 int mt__sphere_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
 {
     const double *o = r->o, *d = r->d;
@@ -89,15 +110,26 @@ int mt__sphere_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
     cz = o[0] * d[1] - o[1] * d[0];
     if (!mt__quadratic(a, b, c, a * rad * rad - (cx * cx + cy * cy + cz * cz), &t0, &t1))
         return 0;
-    return mt__pick_root(s, r, t0, t1, sphere_point, t, p);
+    if (clipped(s)) {
+        if (!mt__pick_root(s, r, t0, t1, sphere_point, t, p)) return 0;
+    } else {
+        /* mt__pick_root with every point on the shape */
+        if (t0 > r->tmax || t1 < r->tmin) return 0;
+        *t = t0 >= r->tmin ? t0 : t1;
+        if (*t > r->tmax) return 0;
+    }
+    ray_point(r, *t, p);
+    return 1;
 }
 
-void mt__sphere_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
+void mt__sphere_surface(const mt_shape *s, const double ray_p[3], mt_surface *sf)
 {
     double rad = s->radius, pm = s->phi_max, dth = (double)s->theta_max - s->theta_min;
-    double p[3], perr[3], zr, cosphi, sinphi, theta, phi;
-    double dpdu[3], dpdv[3], duu[3], duv[3], dvv[3], dndu[3], dndv[3];
+    double ph[3], p[3], perr[3], zr, cosphi, sinphi, theta, phi;
+    double dpdu[3], dpdv[3], dndu[3], dndv[3];
     int i;
+    for (i = 0; i < 3; ++i) ph[i] = ray_p[i];
+    reproject(rad, ph);
     /* pbrt-v2 moves a hit exactly on the z axis off it by 1e-5 r so that phi
      * and the derivatives are defined; here only the derivatives use the
      * moved point, p stays on the sphere. */
@@ -111,20 +143,19 @@ void mt__sphere_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
     zr = sqrt(p[0] * p[0] + p[1] * p[1]);
     cosphi = p[0] / zr;
     sinphi = p[1] / zr;
+    /* pbrt-v2's dpdu and dpdv, with r sin(theta) = zr on the sphere */
     dpdu[0] = -pm * p[1];
     dpdu[1] = pm * p[0];
     dpdu[2] = 0;
     dpdv[0] = dth * p[2] * cosphi;
     dpdv[1] = dth * p[2] * sinphi;
-    dpdv[2] = dth * -rad * sin(theta);
-    duu[0] = -pm * pm * p[0];
-    duu[1] = -pm * pm * p[1];
-    duu[2] = 0;
-    duv[0] = dth * p[2] * pm * -sinphi;
-    duv[1] = dth * p[2] * pm * cosphi;
-    duv[2] = 0;
-    for (i = 0; i < 3; ++i) dvv[i] = -dth * dth * p[i];
-    mt__weingarten(dpdu, dpdv, duu, duv, dvv, dndu, dndv);
+    dpdv[2] = dth * -zr;
+    /* pbrt-v2 solves the Weingarten equations; on a sphere n = p / r, so
+     * their solution is dndu = dpdu / r, dndv = dpdv / r */
+    for (i = 0; i < 3; ++i) {
+        dndu[i] = dpdu[i] / rad;
+        dndv[i] = dpdv[i] / rad;
+    }
     mt__surface_from_object(s, ph, perr, dpdu, dpdv, dndu, dndv, ph, (mt_real)(phi / pm),
                             (mt_real)((theta - s->theta_min) / dth), sf);
 }
