@@ -294,7 +294,8 @@ static void test_ztest_by_hand(void)
     t_check(ok && r.pass, "z-test by hand: d = 0.02 (z = 2) passes", "min p %g", r.min_p);
     t_near(r.min_p, erfc(2 / sqrt(2.0)), 1e-5, "z-test by hand: min p = erfc(2 / sqrt 2)");
     /* rounding-level variance (a sky in a mirror: identical samples, float
-     * accumulation): deterministic, compared within exact_rel = 1e-4 */
+     * accumulation; sd below 1e-6 of the mean): deterministic, compared
+     * within exact_rel = 1e-4 */
     {
         mt_image a3 = t_image_make(4, 4, 3, 0.32f), b3 = t_image_make(4, 4, 3, 0.32000002f),
                  v3 = t_image_make(4, 4, 3, 1e-18f), c3 = t_image_make(4, 4, 3, 0.3201f);
@@ -310,6 +311,22 @@ static void test_ztest_by_hand(void)
         mt_image_free(&b3);
         mt_image_free(&v3);
         mt_image_free(&c3);
+    }
+    /* a small but real noise, sd 9e-5 of the mean (below exact_rel, above
+     * rounding), means 1.5 sd apart: a z-test that passes (z = 1.5), not an
+     * equality within exact_rel that would fail */
+    {
+        mt_ztest_options o = mt_ztest_defaults();
+        mt_image a4 = t_image_make(1, 1, 3, 0.32f), b4 = t_image_make(1, 1, 3, 0.32f + 4.32e-5f),
+                 v4 = t_image_make(1, 1, 3, 4.1472e-10f);
+        o.block = 1;
+        ok = mt_imgcmp_ztest(&a4, &v4, &b4, &v4, &o, &r, NULL, &err) == MT_OK;
+        t_check(ok && r.pass && r.exact == 0 && r.tests == 3 && fabs(r.max_abs_z - 1.5) < 0.01,
+                "z-test by hand: a noise of 9e-5 of the mean is z-tested, not compared exactly",
+                "pass %d exact %ld tests %ld max z %g", r.pass, r.exact, r.tests, r.max_abs_z);
+        mt_image_free(&a4);
+        mt_image_free(&b4);
+        mt_image_free(&v4);
     }
     /* 64 blocks of z = 1: no block is beyond 3.7 (Sidak over 192 tests) but
      * the global test sums them: bias_z = 64 / sqrt 64 = 8 */

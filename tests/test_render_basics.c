@@ -709,6 +709,10 @@ static void test_light_errata(void)
          {0, 0, 3, 2, 2, 2}, 1, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
         {"quadric-scale", "ellipsoid (Scale 2 2 1) seen from outside", "Shape \"sphere\"",
          {0, 0, 4, 2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
+        /* mirrored: ShapeSet's re-intersection moves every sample to the
+         * front, which the pdf must count with the bit alone too */
+        {"quadric-scale", "mirrored ellipsoid (Scale -2 2 1) seen from outside", "Shape \"sphere\"",
+         {0, 0, 4, -2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
         {"quadric-scale", "cylinder under Scale 2 seen from its axis (ReverseOrientation)",
          "Shape \"cylinder\"", {0, 0, 0, 2, 2, 2}, 1, {0, 0.1f, 0.3f}, MT_FIX_QUADRIC_SCALE, 0},
         {"shapeset-hit", "closed mesh (octahedron) seen from above", OCTAHEDRON,
@@ -832,6 +836,40 @@ static void test_infinite_lights(void)
     } else {
         char buf[1024];
         t_fail("light infinite map", "%s", mt_error_format(&err, buf, sizeof buf));
+    }
+    {
+        /* pbrt-v2 reads a PFM's rows in file order (erratum pfm-rows): its
+         * map is the corrected one upside down, theta -> pi - theta, which
+         * in the light's frame (no transform here) is z -> -z */
+        mt_transform id = mt_transform_identity();
+        mt__light lv2, lc;
+        mt_rng rng;
+        int bad = 0, differ = 0;
+        double worst = 0;
+        if (mt__light_create(&lv2, "infinite", ps, &id, MT_MODE_PBRT_V2, &err) == MT_OK) {
+            if (mt__light_create(&lc, "infinite", ps, &id, MT_MODE_CORRECTED, &err) == MT_OK) {
+                mt_rng_seed(&rng, 5, 5);
+                for (i = 0; i < 2000; ++i) {
+                    mt_vec3 d = mt_uniform_sample_sphere(mt_rng_uniform(&rng), mt_rng_uniform(&rng));
+                    mt_rgb a = mt__light_le(&lv2, d), b = mt__light_le(&lc, mt_v3(d.x, d.y, -d.z));
+                    mt_rgb c = mt__light_le(&lc, d);
+                    /* beside the 300x patch a float ulp of theta moves the
+                     * bilinear lookup by ~1e-4 absolute: relative 1e-3
+                     * above 1; a map not flipped is off by up to 300 */
+                    double e = fabs(a.c[0] - b.c[0]) / (fabs(b.c[0]) + 1);
+                    worst = fmax(worst, e);
+                    bad += e > 1e-3;
+                    differ += fabs(a.c[0] - c.c[0]) > 1e-3 * (fabs(c.c[0]) + 1e-3);
+                }
+                t_check(bad == 0 && differ > 100,
+                        "light infinite map: a PFM map upside down in pbrt-v2 mode (pfm-rows), "
+                        "upright corrected",
+                        "%d of 2000 directions off the flipped map (worst %.3g), %d differ between modes",
+                        bad, worst, differ);
+                mt__light_free(&lc);
+            }
+            mt__light_free(&lv2);
+        }
     }
     t_tmpdir_remove();
     mt_paramset_destroy(ps);

@@ -142,9 +142,8 @@ typedef struct mt_ztest_result {
  * 1.2% for alpha = 1% (5000 trials of tests/test_imgcmp.c's scene).
  *
  * A block-channel pair with va + vb = 0, or with sqrt(va + vb) at most
- * exact_rel * max(|ma|, |mb|) (pure background, or a sky seen in a mirror:
- * every sample identical, the variance only float rounding), is not a
- * z-test: the means must be equal within exact_rel * max(|ma|, |mb|) --
+ * 1e-6 max(|ma|, |mb|) (pure background, or a sky seen in a mirror: every
+ * sample identical, the variance only float rounding), is not a z-test: the means must be equal within exact_rel * max(|ma|, |mb|) --
  * float accumulation of identical samples drifts by less than 1e-4 over
  * 2^12 samples -- and a mismatch fails the image whatever the p-values.
  * Such pairs are not counted in m.

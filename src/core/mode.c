@@ -55,7 +55,8 @@ static const mt_erratum errata[] = {
      "rules pbrt-v2 subdivides with there: the limit normals are degrees off the limit "
      "surface's and change with nlevels (pbrt-v3 does the same)",
      "the masks applied to the control points; at boundary vertices of four faces or more the "
-     "across tangent from the one-ring subdivided to its limit"},
+     "across tangent from the one-ring subdivided to its limit (the limit tangent for four and "
+     "five faces; from six on the rules leave no single tangent plane and it is a choice)"},
     {"disk-partials", MT_FIX_DISK_PARTIALS, "geometry", "disk.cpp Disk::Intersect",
      "dpdu = phimax (-y, x, 0) carries an extra factor phimax / 2 pi, and dpdv = -(x, y) / "
      "(1 - v) (radius - innerradius) / radius: the derivatives of the disk's (u, v) only for a "

@@ -85,16 +85,25 @@ static mt_status check_inputs(const mt_image *var_a, const mt_image *var_b,
     return MT_OK;
 }
 
+/* A standard deviation below this fraction of the means is rounding, not
+ * estimation noise: about 8 float epsilons, far above the ~1e-9 that float
+ * accumulation leaves on identical samples, far below any Monte Carlo
+ * noise a z-test is meant for. Kept apart from exact_rel (the tolerance of
+ * the equality that replaces the z-test): with one number for both, a noisy
+ * pair whose deviation is just below exact_rel would be asked for equality
+ * within one standard deviation and fail about a third of the time. */
+#define ROUNDING_SD 1e-6
+
 /* Whether a pair is deterministic rather than noisy: no variance, or a
- * standard deviation of the difference at rounding level (below exact_rel of
- * the means). A sky seen in a mirror is the same value in every sample, but
- * float accumulation leaves a variance of ~1e-18 on a mean of 0.3 and the
- * float and double builds' means differ by ~1e-8: as a z-test that would be
- * z = 70, a rounding difference called a bias. */
-static int pair_exact(double ma, double mb, double va, double vb, double exact_rel)
+ * standard deviation of the difference at rounding level. A sky seen in a
+ * mirror is the same value in every sample, but float accumulation leaves a
+ * variance of ~1e-18 on a mean of 0.3 and the float and double builds' means
+ * differ by ~1e-8: as a z-test that would be z = 70, a rounding difference
+ * called a bias. */
+static int pair_exact(double ma, double mb, double va, double vb)
 {
     double s2 = va + vb, scale = fabs(ma) > fabs(mb) ? fabs(ma) : fabs(mb);
-    return !(s2 > 0) || s2 <= exact_rel * scale * exact_rel * scale;
+    return !(s2 > 0) || s2 <= ROUNDING_SD * scale * ROUNDING_SD * scale;
 }
 
 /* The z of one block-channel pair, or for an exact pair 0 when the means
@@ -102,7 +111,7 @@ static int pair_exact(double ma, double mb, double va, double vb, double exact_r
 static double pair_z(double ma, double mb, double va, double vb, double exact_rel, int *exact)
 {
     double scale = fabs(ma) > fabs(mb) ? fabs(ma) : fabs(mb);
-    *exact = pair_exact(ma, mb, va, vb, exact_rel);
+    *exact = pair_exact(ma, mb, va, vb);
     if (!*exact) return (ma - mb) / sqrt(va + vb);
     if (fabs(ma - mb) <= exact_rel * scale) return 0;
     return ma > mb ? FLT_MAX : -FLT_MAX;
@@ -130,7 +139,7 @@ mt_status mt_imgcmp_ztest(const mt_image *a, const mt_image *var_a, const mt_ima
     }
     n = (size_t)g.bx * (size_t)g.by * (size_t)g.nc;
     out->tests = out->exact = out->exact_mismatch = out->beyond = 0;
-    for (k = 0; k < n; ++k) out->tests += !pair_exact(ma[k], mb[k], va[k], vb[k], o.exact_rel);
+    for (k = 0; k < n; ++k) out->tests += !pair_exact(ma[k], mb[k], va[k], vb[k]);
     /* 1 - (1 - alpha/2)^(1/m) without cancellation for large m; the other
      * half of alpha goes to the channels' global tests */
     out->threshold = out->tests ? -expm1(log1p(-0.5 * o.alpha) / (double)out->tests) : o.alpha;

@@ -247,9 +247,9 @@ mt_vec3 mt_shape_sample(const mt_shape *s, uint32_t prim, mt_real u1, mt_real u2
  * sphere; otherwise as mt_shape_sample. With partial-sampling fixed, a cone
  * direction that misses a clipped sphere gives a zero *ns (no emission; its
  * pdf is 0). With quadric-scale fixed the cone has the world radius, and a
- * sphere under a transform that is not a similarity is area-sampled (and,
- * with shapeset-hit fixed, moved to the first point of the ray from p
- * through the sample, as ShapeSet does). */
+ * sphere under a transform that is not a similarity is area-sampled and
+ * moved to the first point of the ray from p through the sample, as
+ * ShapeSet does (its pdf then sums every point along a direction). */
 mt_vec3 mt_shape_sample_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_real u1, mt_real u2,
                              mt_vec3 *ns);
 /* pbrt-v2 Shape::Pdf(p, wi) (solid angle, wi unit): the cone pdf for a
@@ -258,7 +258,7 @@ mt_vec3 mt_shape_sample_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_rea
  * value is not finite. Fixed: the cone only for directions that meet a
  * clipped sphere (partial-sampling); the world density of a quadric
  * (quadric-scale); every point of a quadric along the ray, summed
- * (shapeset-hit). */
+ * (shapeset-hit, and any area-sampled ellipsoid). */
 mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 wi);
 
 /* pbrt-v2 ShapeSet: every primitive of the shape, one chosen with

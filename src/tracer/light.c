@@ -207,8 +207,10 @@ void mt__light_sample_l(const mt__light *l, const mt_surface *sf, mt_vec3 p, mt_
         /* pbrt-v2's ShapeSet re-intersects the ray from p towards the sample
          * with its shapes and keeps that point and its normal. A lone sphere
          * or disk gives back the sampled point itself (the sample is the
-         * first hit of that ray), and the sampled normal equals the hit's
-         * unless the transform swaps handedness: skip the re-intersection. */
+         * first hit of that ray: the cone's point, a point seen from inside,
+         * a disk's, or an area-sampled ellipsoid's sample already moved
+         * there), and the sampled normal equals the hit's unless the
+         * transform swaps handedness: skip the re-intersection. */
         if ((k == MT_SHAPE_SPHERE || k == MT_SHAPE_DISK) &&
             mt_shape_flip(l->shape) == mt_shape_reverse_orientation(l->shape))
             ps = mt_shape_sample_from(l->shape, 0, p, u1, u2, &ns);

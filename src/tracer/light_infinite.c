@@ -27,7 +27,10 @@ static mt_status map_init(mt__light *l, const char *path, mt_mode mode, mt_error
     mt_real *lum, filter;
     int w, h, u, v, c;
     size_t i;
-    mt_status st = mt_image_read(path, &img, err);
+    /* through pbrt-v2's ReadImage in pbrt-v2 mode, as InfiniteAreaLight
+     * reads its map: the image-reading errata (EXR through half, Y-only EXR
+     * black, PFM rows upside down) apply to environment maps too */
+    mt_status st = mt_image_read_mode(path, mode, &img, err);
     if (st != MT_OK) return st;
     if (img.channels != 3) {
         /* gray or RGBA: keep the RGB (gray repeated), as pbrt-v2's ReadImage */

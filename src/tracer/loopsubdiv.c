@@ -350,9 +350,15 @@ static mt_vec3 boundary_across(const mt_vec3 *r, int n, mt_vec3 P)
  * for the edges inside), so even on the control points it misses the limit
  * tangent (3.4 degrees at a valence-5 corner of an open box, turning with
  * every level). The one-ring is closed under those rules: subdividing it
- * alone, level after level, leaves the components of the limit tangents,
- * and the mask applied then gives their direction (32 levels: the others
- * decay about twofold per level). tmp holds 2n points. */
+ * alone, level after level, leaves the dominant across component, and the
+ * mask applied then gives its direction (32 levels; the other components
+ * shrink relative to it by the ratio of their eigenvalues each level). That
+ * is the limit tangent for four and five faces. From six faces on, these
+ * rules have a second across eigenvalue at least as large (1/2 doubled at
+ * six faces, above the first from seven on, by a numerical eigen-analysis
+ * of the one-ring's subdivision matrix): the limit surface has no single
+ * tangent plane there and the direction found is a choice, no better
+ * defined than pbrt-v2's. The tests cover four faces. tmp holds 2n points. */
 static mt_vec3 boundary_across_limit(const mt_vec3 *r, int n, mt_vec3 P, mt_vec3 *tmp)
 {
     mt_vec3 *a = tmp, *b = tmp + n, v = P, T0 = boundary_across(r, n, P), T;

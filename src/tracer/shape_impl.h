@@ -65,6 +65,10 @@ mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real
 /* 1 with *pdf when the sphere handles Pdf(p, wi) itself (the cone seen
  * from outside). */
 int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi, mt_real *pdf);
+/* Whether the sphere is sampled by area as seen from any point (an ellipsoid
+ * with quadric-scale fixed): its samples are then the first point along
+ * their ray and its pdf sums every point along a direction. */
+int mt__sphere_area_sampled(const mt_shape *s);
 
 /* Object-space bounds of a quadric (pbrt-v2 ObjectBound). */
 void mt__quadric_object_bounds(const mt_shape *s, double lo[3], double hi[3]);

@@ -79,11 +79,12 @@ mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 w
     mt_hit hit;
     mt_surface sf;
     int more = s->kind != MT_SHAPE_TRIANGLES && s->kind != MT_SHAPE_DISK &&
-               (s->mode & MT_FIX_SHAPESET_HIT);
+               ((s->mode & MT_FIX_SHAPESET_HIT) || mt__sphere_area_sampled(s));
     if (s->kind == MT_SHAPE_SPHERE && mt__sphere_pdf_from(s, p, wi, &pdf)) return pdf;
     /* pbrt-v2 Shape::Pdf: intersect the ray (p, wi, mint 1e-3) and convert
-     * the area density 1 / Area to solid angle; with shapeset-hit fixed, a
-     * quadric's second point along the ray adds its own */
+     * the area density 1 / Area to solid angle; with shapeset-hit fixed (or
+     * for an area-sampled ellipsoid, whose samples are moved to the first
+     * point), a quadric's second point along the ray adds its own */
     r = mt_ray_make(p, wi, (mt_real)1e-3, MT_RAY_TMAX);
     while (mt_shape_intersect(s, prim, &r, &hit)) {
         mt_hit_surface(&hit, &r, &sf);

@@ -162,15 +162,10 @@ void mt__sphere_surface(const mt_shape *s, const double ray_p[3], mt_surface *sf
 
 mt_real mt__sphere_area(const mt_shape *s) { return s->phi_max * s->radius * (s->zmax - s->zmin); }
 
-static int sphere_partial(const mt_shape *s)
-{
-    return s->zmin > -s->radius || s->zmax < s->radius || mt__phi_cut(s);
-}
-
 mt_vec3 mt__sphere_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns)
 {
     mt_vec3 p;
-    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && sphere_partial(s)) {
+    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && clipped(s)) {
         /* uniform in area on the clipped sphere: z uniform in [zmin, zmax]
          * (Archimedes' hat-box theorem), phi uniform in [0, phimax]; z runs
          * down from zmax as pbrt-v2's UniformSampleSphere runs from +z */
@@ -212,12 +207,19 @@ static int sees_outside(const mt_shape *s, mt_vec3 p, mt_real *costhetamax)
     return 1;
 }
 
-/* An area sample seen from p (an ellipsoid, where no cone applies). With
- * shapeset-hit fixed it is moved, as ShapeSet does, to the first point of
- * the shape on the ray from p through it, and the pdf of a direction sums
- * over every point of the shape along it (mt_shape_pdf_from); without, it
- * stays where it is and the pdf is that of the first point, which is the
- * sampled one whenever the sample is not hidden behind the shape itself. */
+int mt__sphere_area_sampled(const mt_shape *s)
+{
+    mt_real rad;
+    return s->kind == MT_SHAPE_SPHERE && !cone_radius(s, &rad);
+}
+
+/* An area sample seen from p (an ellipsoid, where no cone applies: only with
+ * quadric-scale fixed, pbrt-v2 never samples this way). It is moved to the
+ * first point of the shape on the ray from p through it, and the pdf of a
+ * direction sums over every point of the shape along it (mt_shape_pdf_from),
+ * whatever shapeset-hit says: the two must go together, and ShapeSet's
+ * re-intersection under a mirroring transform moves the sample anyway, so
+ * leaving a hidden sample where it is would be right only without a mirror. */
 static mt_vec3 area_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2,
                                 mt_vec3 *ns)
 {
@@ -225,7 +227,7 @@ static mt_vec3 area_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_rea
     mt_ray r = mt_ray_make(p, mt_v3_sub(ps, p), (mt_real)1e-3, MT_RAY_TMAX);
     mt_hit hit;
     mt_surface sf;
-    if (!(s->mode & MT_FIX_SHAPESET_HIT) || !mt_shape_intersect(s, 0, &r, &hit)) return ps;
+    if (!mt_shape_intersect(s, 0, &r, &hit)) return ps;
     mt_hit_surface(&hit, &r, &sf);
     *ns = sf.dg.n;
     return mt_ray_at(&r, hit.t);
@@ -250,7 +252,7 @@ mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real
          * does the same (a normal at right angles to the ray, which passes
          * the emission test one time in two); corrected, no sample. */
         hit.t = mt_v3_dot(mt_v3_sub(c, p), mt_v3_normalize(r.d));
-        if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && sphere_partial(s)) {
+        if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && clipped(s)) {
             *ns = mt_v3(0, 0, 0);
             return mt_ray_at(&r, hit.t);
         }
@@ -270,7 +272,7 @@ int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi, mt_real *pdf)
     if (!mt_is_finite(*pdf)) *pdf = 0;
     /* pbrt-v2 answers for any direction; a partial sphere is reached only by
      * the directions that meet it */
-    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && sphere_partial(s)) {
+    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && clipped(s)) {
         mt_ray r = mt_ray_make(p, wi, (mt_real)1e-3, MT_RAY_TMAX);
         if (!mt_shape_occluded(s, 0, &r)) *pdf = 0;
     }
