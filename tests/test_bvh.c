@@ -13,17 +13,6 @@
 #include "support/check.h"
 #include "support/tgeom.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SANITIZED 1
-#endif
-#endif
-#ifndef SANITIZED
-#define SANITIZED 0
-#endif
-
 static mt_real urand(mt_rng *r) { return mt_rng_uniform(r); }
 static mt_vec3 rand_in(mt_rng *r, mt_vec3 lo, mt_vec3 hi)
 {
@@ -174,7 +163,7 @@ static void compare_brute(const char *name, const mt_geometry *g, int nrays, uin
 static void test_soups(void)
 {
     mt_error err;
-    int k, nrays = SANITIZED ? 20000 : 100000;
+    int k, nrays = T_SANITIZED ? 20000 : 100000;
     for (k = 0; k < 3; ++k) {
         char name[64];
         mt_geometry *g = soup(100 + k, k == 0 ? 400 : 150, k != 0, &err);
@@ -401,7 +390,7 @@ static void test_bunny(void)
     t_check(mt_geometry_prim_count(g) > 60000 && st.max_depth < 96 && st.leaves > 1000,
             "bunny: loaded and built", "%u triangles, depth %u", (unsigned)mt_geometry_prim_count(g),
             (unsigned)st.max_depth);
-    compare_brute("bunny", g, SANITIZED ? 200 : 1000, 99);
+    compare_brute("bunny", g, T_SANITIZED ? 200 : 1000, 99);
     mt_geometry_destroy(g);
 }
 

@@ -27,8 +27,7 @@
 #define TEST_SEED 7
 #endif
 
-static const char *const scenes[] = {"matte", "plastic", "glass", "mirror", "metal", "shinymetal",
-                                     "substrate", "translucent", "uber", "mix", "measured"};
+static const char *const scenes[] = T_MATERIAL_SCENES;
 
 static char *read_text(const char *path)
 {

@@ -21,19 +21,7 @@
 #include "materia/imgcmp.h"
 #include "materia/render.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SANITIZED 1
-#endif
-#endif
-#ifndef SANITIZED
-#define SANITIZED 0
-#endif
-
-static const char *const materials[] = {"matte", "plastic", "glass", "mirror", "metal", "shinymetal",
-                                        "substrate", "translucent", "uber", "mix", "measured"};
+static const char *const materials[] = T_MATERIAL_SCENES;
 static const char *const real[] = {"real-bunny-measured", "real-killeroo-simple", "real-metal-teapot"};
 
 typedef struct noise_row {
@@ -66,7 +54,7 @@ int main(void)
         t_skip("pbrt-v2 renders", "../shared is absent");
         return 0;
     }
-    if (SANITIZED) {
+    if (T_SANITIZED) {
         t_skip("pbrt-v2 renders", "not under the sanitizers (20 million samples per scene); the unsanitized builds run it");
         return 0;
     }

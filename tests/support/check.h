@@ -45,4 +45,23 @@ double t_ulps(mt_real a, mt_real b);
 /* The directory of the shared reference data, or NULL (tests say SKIP). */
 const char *t_shared_dir(void);
 
+/* T_SANITIZED: 1 in an AddressSanitizer build (gcc's macro or clang's
+ * feature test), where tests shrink their workloads. */
+#if defined(__SANITIZE_ADDRESS__)
+#define T_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define T_SANITIZED 1
+#endif
+#endif
+#ifndef T_SANITIZED
+#define T_SANITIZED 0
+#endif
+
+/* The 11 material scenes that need no dipole integrator, by name (golden/
+ * and ../shared/reference/scenes/ both have one per name). */
+#define T_MATERIAL_SCENES                                                                   \
+    {"matte", "plastic", "glass", "mirror", "metal", "shinymetal", "substrate", "translucent", \
+     "uber", "mix", "measured"}
+
 #endif
