@@ -99,6 +99,72 @@ static int subtree(const mt__kdtree *t, const mt_real *pts, uint32_t i, int *buf
 
 static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
 
+/* mt__kdtree_ball against the tree's own search: the same items, distances
+ * (to the bit) and order, or -1 exactly when more than cap are within; from
+ * the grid (queries near points and anywhere around the data, squared radii
+ * up to the indexed one, caps 1 to 64) and from the tree (no index, larger
+ * radii, NaN queries). */
+static void ball_case(const char *label, mt__kdtree *t, const mt_real *pts, int n, mt_rng *r)
+{
+    static const mt_real index_r2[] = {0, 8e-3f, 0.05f};
+    static const int caps[] = {1, 3, 32, 64};
+    static hits h;
+    int32_t item[64];
+    mt_real d2[64];
+    int wrong = 0, asked = 0, overflows = 0, from_grid = 0, ix, q, k, c, j;
+    char name[160];
+    mt_error err;
+    for (ix = 0; ix < 3; ++ix) {
+        if (index_r2[ix] > 0 && mt__kdtree_index(t, index_r2[ix], &err) != MT_OK) {
+            t_fail(label, "k-d tree index failed");
+            return;
+        }
+        from_grid += t->grid != NULL;
+        for (q = 0; q < 300; ++q) {
+            mt_real p[3], radii[5];
+            if (q < 100) {
+                int i = (int)mt_rng_bounded(r, (uint32_t)n);
+                /* half of them exactly at a point: on its node's split */
+                for (c = 0; c < 3; ++c)
+                    p[c] = pts[3 * i + c] + (q < 50 ? 0 : (mt_real)(0.02 * (mt_rng_uniform_d(r) - 0.5)));
+            } else {
+                p[0] = (mt_real)(1.6 * mt_rng_uniform_d(r) - 0.3);
+                p[1] = (mt_real)(1.6 * mt_rng_uniform_d(r) - 0.3);
+                p[2] = (mt_real)(2.6 * mt_rng_uniform_d(r) - 1.3);
+            }
+            if (q == 299) p[1] = (mt_real)NAN;
+            radii[0] = 1e-4f, radii[1] = 1e-3f, radii[2] = 4e-3f;
+            radii[3] = index_r2[ix] > 0 ? index_r2[ix] : 8e-3f, radii[4] = 0.2f;
+            for (k = 0; k < 5; ++k)
+                for (c = 0; c < 4; ++c) {
+                    mt_real max2 = radii[k];
+                    int got = mt__kdtree_ball(t, p, radii[k], caps[c], item, d2);
+                    h.n = 0;
+                    mt__kdtree_lookup(t, p, collect, &h, &max2);
+                    asked++;
+                    if (h.n > caps[c]) {
+                        overflows++;
+                        if (got != -1) wrong++;
+                        continue;
+                    }
+                    if (got != h.n) {
+                        wrong++;
+                        continue;
+                    }
+                    for (j = 0; j < got; ++j)
+                        if (item[j] != h.items[j] || d2[j] != h.d2[j]) {
+                            wrong++;
+                            break;
+                        }
+                }
+        }
+    }
+    snprintf(name, sizeof name, "k-d tree %s: ball searches give the tree's items in its order", label);
+    t_check(wrong == 0 && (n < 2 || from_grid == 2), name,
+            "%d of %d searches differ (%d overflow the cap); %d of 2 indexes built", wrong, asked,
+            overflows, from_grid);
+}
+
 static void kdtree_case(const char *label, const mt_real *pts, int n, mt_rng *r)
 {
     static const mt_real radii[] = {1e-4f, 1e-3f, 1e-2f, 0.1f, 2.048f};
@@ -155,6 +221,7 @@ static void kdtree_case(const char *label, const mt_real *pts, int n, mt_rng *r)
     snprintf(name, sizeof name, "k-d tree %s: lookups find what brute force finds", label);
     t_check(wrong == 0, name, "%d of 1200 lookups differ (sets, distances, weighted sums or the "
             "nearest point with a shrinking radius)", wrong);
+    ball_case(label, &t, pts, n, r);
     mt__kdtree_free(&t);
     free(buf);
 }

@@ -139,6 +139,7 @@ mt_status mt__kdtree_build(mt__kdtree *t, const mt_real *points, int n, mt_error
     int i;
     t->nodes = NULL;
     t->n = 0;
+    t->grid = NULL;
     if (n <= 0) return MT_OK;
     t->nodes = mt__malloc((size_t)n * sizeof *t->nodes);
     b.idx = mt__malloc((size_t)n * sizeof *b.idx);
@@ -160,6 +161,7 @@ mt_status mt__kdtree_build(mt__kdtree *t, const mt_real *points, int n, mt_error
 
 void mt__kdtree_free(mt__kdtree *t)
 {
+    mt__kdtree_index_free(t);
     mt__free(t->nodes);
     t->nodes = NULL;
     t->n = 0;
@@ -169,7 +171,7 @@ static void lookup(const mt__kdtree *t, uint32_t num, const mt_real p[3], mt__kd
                    void *ctx, mt_real *max_d2)
 {
     const mt__kdnode *nd = &t->nodes[num];
-    mt_real dx, dy, dz, d2;
+    mt_real d2;
     if (nd->axis != 3) {
         mt_real d = p[nd->axis] - nd->split, plane2 = d * d;
         if (p[nd->axis] <= nd->split) {
@@ -181,11 +183,7 @@ static void lookup(const mt__kdtree *t, uint32_t num, const mt_real p[3], mt__kd
             if (plane2 < *max_d2 && nd->has_left) lookup(t, num + 1, p, proc, ctx, max_d2);
         }
     }
-    /* pbrt-v2 DistanceSquared(node point, p) */
-    dx = nd->p[0] - p[0];
-    dy = nd->p[1] - p[1];
-    dz = nd->p[2] - p[2];
-    d2 = dx * dx + dy * dy + dz * dz;
+    d2 = mt__kd_d2(nd->p, p);
     if (d2 < *max_d2) proc(ctx, nd->item, d2, max_d2);
 }
 

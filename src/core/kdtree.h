@@ -34,9 +34,12 @@ typedef struct mt__kdnode {
 
 #define MT__KD_NONE UINT32_MAX
 
+struct mt__kdgrid;
+
 typedef struct mt__kdtree {
     mt__kdnode *nodes;
     int n;
+    struct mt__kdgrid *grid; /* mt__kdtree_index's, or NULL */
 } mt__kdtree;
 
 /* Builds the tree of the n points (x, y, z triples; finite). n may be 0 (an
@@ -50,5 +53,30 @@ typedef void (*mt__kdtree_proc)(void *ctx, int item, mt_real d2, mt_real *max_d2
 
 void mt__kdtree_lookup(const mt__kdtree *t, const mt_real p[3], mt__kdtree_proc proc, void *ctx,
                        mt_real *max_d2);
+
+/* pbrt-v2 DistanceSquared(node point, p), the one formula both searches use
+ * (so that they agree to the bit). */
+static inline mt_real mt__kd_d2(const mt_real a[3], const mt_real p[3])
+{
+    mt_real dx = a[0] - p[0], dy = a[1] - p[1], dz = a[2] - p[2];
+    return dx * dx + dy * dy + dz * dz;
+}
+
+/* The points with squared distance below max_d2 (strictly), in the order in
+ * which mt__kdtree_lookup hands them to a callback that leaves *max_d2 alone:
+ * their build indices in item[] and squared distances in d2[]. Returns how
+ * many, or -1 when more than cap lie within (item and d2 then hold nothing
+ * of use). Answered from the index of mt__kdtree_index when it covers
+ * max_d2 and p is finite, else by the tree; the answers are the same bits. */
+int mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, int cap,
+                    int32_t *item, mt_real *d2);
+
+/* Builds an index (kdball.c) for mt__kdtree_ball's searches of squared radius
+ * up to max_d2: a uniform grid of the points, and each node's parent and
+ * depth, from which the tree's visiting order is recovered. A tree deeper
+ * than 31 levels, or a radius that is 0 or not finite, gets no index (the
+ * tree answers). MT_ERR_NOMEM with err filled when memory is exhausted. */
+mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err);
+void mt__kdtree_index_free(mt__kdtree *t);
 
 #endif
