@@ -99,8 +99,10 @@ static int subtree(const mt__kdtree *t, const mt_real *pts, uint32_t i, int *buf
 
 static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
 
-/* mt__kdtree_ball against the tree's own search: the same items, distances
- * (to the bit) and order, or -1 exactly when more than cap are within; from
+/* mt__kdtree_ball and mt__kdball_select against the tree's own search: the
+ * same items, distances (to the bit) and order, at the radius searched and
+ * at a half and a quarter of it, or -1 exactly when more than cap are
+ * within; from
  * the grid (queries near points and anywhere around the data, squared radii
  * up to the indexed one, caps 1 to 64) and from the tree (no index, larger
  * radii, NaN queries). */
@@ -138,24 +140,40 @@ static void ball_case(const char *label, mt__kdtree *t, const mt_real *pts, int 
             for (k = 0; k < 5; ++k)
                 for (c = 0; c < 4; ++c) {
                     mt_real max2 = radii[k];
-                    int got = mt__kdtree_ball(t, p, radii[k], caps[c], item, d2);
+                    mt__kdball b;
+                    int sub;
+                    mt__kdtree_ball(t, p, radii[k], caps[c], &b);
                     h.n = 0;
                     mt__kdtree_lookup(t, p, collect, &h, &max2);
                     asked++;
                     if (h.n > caps[c]) {
                         overflows++;
-                        if (got != -1) wrong++;
+                        if (b.n != -1) wrong++;
                         continue;
                     }
-                    if (got != h.n) {
+                    if (b.n != h.n) {
                         wrong++;
                         continue;
                     }
-                    for (j = 0; j < got; ++j)
-                        if (item[j] != h.items[j] || d2[j] != h.d2[j]) {
+                    /* the whole radius, then smaller ones from the same search */
+                    for (sub = 0; sub < 3; ++sub) {
+                        mt_real r2 = radii[k] / (mt_real)(1 << (2 * sub));
+                        int got;
+                        max2 = r2;
+                        h.n = 0;
+                        mt__kdtree_lookup(t, p, collect, &h, &max2);
+                        got = mt__kdball_select(t, p, &b, r2, item, d2);
+                        if (got != h.n || mt__kdball_count(&b, r2) != h.n) {
                             wrong++;
                             break;
                         }
+                        for (j = 0; j < got; ++j)
+                            if (item[j] != h.items[j] || d2[j] != h.d2[j]) break;
+                        if (j < got) {
+                            wrong++;
+                            break;
+                        }
+                    }
                 }
         }
     }

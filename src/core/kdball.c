@@ -30,9 +30,7 @@
 
 /* What the order key needs of a node's parent, in one load: the parent's
  * split and, packed, its number, the node's depth, the parent's axis and
- * whether the node is its right child. (The depth bounds the walk up front:
- * a loop ended by a loaded parent number would only learn of its end at the
- * end of the chain of loads.) */
+ * whether the node is its right child. */
 typedef struct mt__kdedge {
     mt_real split;
     uint32_t up; /* parent << 8 | depth << 3 | axis << 1 | right */
@@ -40,7 +38,7 @@ typedef struct mt__kdedge {
 
 struct mt__kdgrid {
     mt_real max_d2;      /* the largest squared radius served */
-    mt_real lo[3], inv;  /* cell of x on axis c: floor((x - lo[c]) * inv) */
+    mt_real lo[3], inv[3]; /* cell of x on axis c: floor((x - lo[c]) * inv[c]) */
     int dim[3];
     uint32_t *start;     /* points of cell k: start[k] .. start[k + 1] - 1 */
     mt_real *xyz;        /* the points by cell (3 each), node order within a cell */
@@ -53,7 +51,7 @@ struct mt__kdgrid {
  * those of a and b, whatever the rounding; NaN goes to cell 0. */
 static int cell_of(const struct mt__kdgrid *g, int c, mt_real x)
 {
-    mt_real v = (x - g->lo[c]) * g->inv;
+    mt_real v = (x - g->lo[c]) * g->inv[c];
     if (!(v >= 0)) return 0;
     if (v >= (mt_real)g->dim[c]) return g->dim[c] - 1;
     return (int)v;
@@ -71,25 +69,29 @@ void mt__kdtree_index_free(mt__kdtree *t)
     t->grid = NULL;
 }
 
-/* Cell size: half the radius (the ball's box then spans about 5 cells an
- * axis, 16 r^3 of candidates for a ball of 4.2 r^3), grown until the grid
- * has at most 8 cells a point (4096 at least) and 1024 an axis. */
+/* Cells of the radius (the ball's box spans 2 to 3 an axis). Smaller cells
+ * give fewer candidates but more rows to start: with mystique.brdf, cells
+ * of a quarter to two radii, alike or not along the axes, were within 10%
+ * of each other in bench/measured, this one at the best end. The cells grow
+ * until there are at most 8 a point (4096 at least) and 1024 an axis. */
 static void grid_shape(struct mt__kdgrid *g, const mt_real hi[3], mt_real radius, int n)
 {
-    double cell = 0.5 * (double)radius, limit = 8.0 * n + 4096;
+    static const double share[3] = {1, 1, 1};
+    double scale = (double)radius, limit = 8.0 * n + 4096;
+    int c;
     for (;;) {
         double total = 1;
-        int c, ok = 1;
+        int ok = 1;
         for (c = 0; c < 3; ++c) {
-            double cells = floor(((double)hi[c] - (double)g->lo[c]) / cell) + 1;
+            double cells = floor(((double)hi[c] - (double)g->lo[c]) / (share[c] * scale)) + 1;
             if (cells > 1024) ok = 0;
             total *= cells;
             g->dim[c] = (int)fmin(cells, 1024);
         }
         if (ok && total <= limit) break;
-        cell *= 1.25;
+        scale *= 1.25;
     }
-    g->inv = (mt_real)(1.0 / cell);
+    for (c = 0; c < 3; ++c) g->inv[c] = (mt_real)(1.0 / (share[c] * scale));
 }
 
 mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err)
@@ -178,33 +180,32 @@ nomem:
 }
 
 /* The tree search's own answer (mt__kdtree_lookup with a collecting
- * callback that ends the search once more than cap are found). */
-typedef struct collect {
-    int n, cap;
-    int32_t *item;
-    mt_real *d2;
-} collect;
-
+ * callback that ends the search once more than the cap are found). */
 static void collect_one(void *ctx, int item, mt_real d2, mt_real *max_d2)
 {
-    collect *cl = ctx;
-    if (cl->n == cl->cap) {
-        cl->n = -1;
+    mt__kdball *b = ctx;
+    if (b->n < 0) return;
+    if (b->n == b->cap) {
+        b->n = -1;
         *max_d2 = 0; /* nothing further can be of use */
         return;
     }
-    if (cl->n < 0) return;
-    cl->item[cl->n] = item;
-    cl->d2[cl->n++] = d2;
+    b->id[b->n] = (uint32_t)item;
+    b->d2[b->n++] = d2;
 }
 
-/* The key of node v for the query p (file comment): two bits a level from
- * the root, 0 near side, 1 far side, 2 where the path ends; built from the
- * node up, each parent's digit entering at the top. */
-static uint64_t order_key(const struct mt__kdgrid *g, uint32_t v, const mt_real p[3])
+static int depth_of(const struct mt__kdgrid *g, uint32_t v) { return (int)(g->edge[v].up >> 3 & 31); }
+
+/* The key of node v for the query p (file comment): two bits a level, 0
+ * near side, 1 far side, 2 where the path ends, from the level below top
+ * (the found nodes' common ancestor, whose digits above are the same for
+ * all); built from the node up, each parent's digit entering at the top.
+ * (The depth bounds the walk up front: a loop ended by a loaded parent
+ * number would only learn of its end at the end of the chain of loads.) */
+static uint64_t order_key(const struct mt__kdgrid *g, uint32_t v, int top, const mt_real p[3])
 {
     uint64_t key = (uint64_t)2 << 62;
-    int level = v ? (int)(g->edge[v].up >> 3 & 31) : 0;
+    int level = depth_of(g, v) - top;
     for (; level > 0; --level) {
         const mt__kdedge *e = &g->edge[v];
         unsigned right_first = !(p[(e->up >> 1) & 3] <= e->split);
@@ -214,25 +215,21 @@ static uint64_t order_key(const struct mt__kdgrid *g, uint32_t v, const mt_real 
     return key;
 }
 
-int mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, int cap,
-                    int32_t *item, mt_real *d2)
+void mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, int cap,
+                     mt__kdball *b)
 {
     const struct mt__kdgrid *g = t->grid;
-    uint64_t key[64];
-    uint32_t found[65];
-    mt_real dist[65];
-    int lo[3], hi[3], c, y, z, n = 0, i;
-    if (!g || !(max_d2 <= g->max_d2) || cap > 64 || !isfinite(p[0]) || !isfinite(p[1]) ||
-        !isfinite(p[2])) {
-        collect cl;
+    int lo[3], hi[3], c, y, z, n = 0;
+    if (cap > MT__KDBALL_MAX) cap = MT__KDBALL_MAX;
+    b->cap = cap;
+    if (!g || !(max_d2 <= g->max_d2) || !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
         mt_real r2 = max_d2;
-        cl.n = 0;
-        cl.cap = cap;
-        cl.item = item;
-        cl.d2 = d2;
-        mt__kdtree_lookup(t, p, collect_one, &cl, &r2);
-        return cl.n;
+        b->n = 0;
+        b->ordered = 1;
+        mt__kdtree_lookup(t, p, collect_one, b, &r2);
+        return;
     }
+    b->ordered = 0;
     {
         /* a point within the radius has |q - p| < r (1 + 2^-22) on each axis,
          * exactly; the margin also covers the rounding of p -/+ m */
@@ -253,29 +250,66 @@ int mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, int
             for (k = g->start[row + (size_t)lo[0]]; k < end; ++k) {
                 mt_real e = mt__kd_d2(&g->xyz[3 * k], p);
                 int at = n < cap ? n : cap;
-                found[at] = g->node[k];
-                dist[at] = e;
+                b->id[at] = g->node[k];
+                b->d2[at] = e;
                 n += e < max_d2;
             }
-            if (n > cap) return -1;
+            if (n > cap) {
+                b->n = -1;
+                return;
+            }
         }
-    for (i = 0; i < n; ++i) d2[i] = dist[i];
+    b->n = n;
+}
+
+int mt__kdball_select(const mt__kdtree *t, const mt_real p[3], const mt__kdball *b,
+                      mt_real max_d2, int32_t *item, mt_real *d2)
+{
+    const struct mt__kdgrid *g = t->grid;
+    uint64_t key[MT__KDBALL_MAX];
+    uint32_t node[MT__KDBALL_MAX];
+    int n = 0, i, top = 0;
+    if (b->ordered) {
+        for (i = 0; i < b->n; ++i)
+            if (b->d2[i] < max_d2) {
+                item[n] = (int32_t)b->id[i];
+                d2[n++] = b->d2[i];
+            }
+        return n;
+    }
+    for (i = 0; i < b->n; ++i)
+        if (b->d2[i] < max_d2) {
+            node[n] = b->id[i];
+            d2[n++] = b->d2[i];
+        }
+    if (n >= 2) {
+        /* the nodes' lowest common ancestor: nodes are numbered depth first,
+         * so it is the first ancestor of the largest number that is not
+         * above the smallest */
+        uint32_t lo_v = node[0], hi_v = node[0];
+        for (i = 1; i < n; ++i) {
+            lo_v = node[i] < lo_v ? node[i] : lo_v;
+            hi_v = node[i] > hi_v ? node[i] : hi_v;
+        }
+        while (hi_v > lo_v) hi_v = g->edge[hi_v].up >> 8;
+        top = depth_of(g, hi_v);
+    }
     /* insertion sort by key, carrying node and distance */
     for (i = 0; i < n; ++i) {
-        uint64_t kk = order_key(g, found[i], p);
-        uint32_t v = found[i];
+        uint64_t kk = order_key(g, node[i], top, p);
+        uint32_t v = node[i];
         mt_real e = d2[i];
         int j = i;
         while (j > 0 && key[j - 1] > kk) {
             key[j] = key[j - 1];
-            found[j] = found[j - 1];
+            node[j] = node[j - 1];
             d2[j] = d2[j - 1];
             --j;
         }
         key[j] = kk;
-        found[j] = v;
+        node[j] = v;
         d2[j] = e;
     }
-    for (i = 0; i < n; ++i) item[i] = t->nodes[found[i]].item;
+    for (i = 0; i < n; ++i) item[i] = t->nodes[node[i]].item;
     return n;
 }

@@ -62,14 +62,40 @@ static inline mt_real mt__kd_d2(const mt_real a[3], const mt_real p[3])
     return dx * dx + dy * dy + dz * dz;
 }
 
-/* The points with squared distance below max_d2 (strictly), in the order in
- * which mt__kdtree_lookup hands them to a callback that leaves *max_d2 alone:
- * their build indices in item[] and squared distances in d2[]. Returns how
- * many, or -1 when more than cap lie within (item and d2 then hold nothing
- * of use). Answered from the index of mt__kdtree_index when it covers
- * max_d2 and p is finite, else by the tree; the answers are the same bits. */
-int mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, int cap,
-                    int32_t *item, mt_real *d2);
+/* A ball search: the points with squared distance below a radius (strictly),
+ * as mt__kdtree_ball finds them; mt__kdball_select then gives those within
+ * any smaller radius in the tree's visiting order. */
+#define MT__KDBALL_MAX 64
+typedef struct mt__kdball {
+    int n;       /* how many, or -1 when more than cap lie within */
+    int cap;
+    int ordered; /* id[] holds build indices in visiting order (the tree
+                    answered), else node numbers in no particular order */
+    uint32_t id[MT__KDBALL_MAX + 1];
+    mt_real d2[MT__KDBALL_MAX + 1];
+} mt__kdball;
+
+/* Finds the points within max_d2 of p, at most cap (<= MT__KDBALL_MAX) of
+ * them. Answered from the index of mt__kdtree_index when it covers max_d2
+ * and p is finite, else by the tree; the answers are the same bits. */
+void mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, int cap,
+                     mt__kdball *b);
+
+/* How many of b's points lie within max_d2 (at most b's radius). */
+static inline int mt__kdball_count(const mt__kdball *b, mt_real max_d2)
+{
+    int i, n = 0;
+    for (i = 0; i < b->n; ++i) n += b->d2[i] < max_d2;
+    return n;
+}
+
+/* b's points within max_d2 (at most b's radius; b->n >= 0) in the order in
+ * which mt__kdtree_lookup hands them to a callback that leaves its radius
+ * alone: their build indices in item[] and squared distances in d2[].
+ * Returns how many. Only the points selected are put in order, so a caller
+ * that needs one of several radii pays for the order of that one. */
+int mt__kdball_select(const mt__kdtree *t, const mt_real p[3], const mt__kdball *b,
+                      mt_real max_d2, int32_t *item, mt_real *d2);
 
 /* Builds an index (kdball.c) for mt__kdtree_ball's searches of squared radius
  * up to max_d2: a uniform grid of the points, and each node's parent and
