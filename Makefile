@@ -18,7 +18,7 @@ PRECISION    ?= float
 SANITIZE     ?=
 PREFIX       ?= /usr/local
 DESTDIR      ?=
-CFLAGS       ?= -O2 -g
+CFLAGS       ?= -O3 -g
 PKG_CONFIG   ?= pkg-config
 
 comma := ,

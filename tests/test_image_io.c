@@ -810,7 +810,7 @@ static void test_write_failures(void)
         char path[600], name[96];
         long n;
         int leftovers = 0, failures = 0, kept = 1;
-        size_t before_n, after_n;
+        size_t before_n = 0, after_n = 0;
         unsigned char *before, *after;
         snprintf(path, sizeof path, "%s/no/such/dir/out.%s", dir, fmt[f]);
         mt_error_clear(&err);

@@ -215,7 +215,7 @@ static void bsdf_values(const char *tool, const char *tmp)
                 }
                 for (k = 0; k < 7; ++k)
                     if (!close_rel(bss[c][k], num(f[k + 1]), 1e-5)) ok = 0;
-                snprintf(bname, sizeof bname, "pbrt-v2 BSSRDF %s (materia-query)", f[0]);
+                snprintf(bname, sizeof bname, "pbrt-v2 BSSRDF %.64s (materia-query)", f[0]);
                 t_check(ok, bname, "sigma_a %.9g %.9g %.9g sigma'_s %.9g %.9g %.9g eta %.9g; pbrt-v2 %s %s %s %s %s %s %s",
                         bss[c][0], bss[c][1], bss[c][2], bss[c][3], bss[c][4], bss[c][5], bss[c][6], f[1], f[2], f[3],
                         f[4], f[5], f[6], f[7]);

@@ -20,7 +20,7 @@ int t_bsdf_row_parse(const char *line, t_bsdf_row *row)
     }
     if (n < 16) return 0;
     memset(row, 0, sizeof *row);
-    snprintf(row->id, sizeof row->id, "%s", f[0]);
+    snprintf(row->id, sizeof row->id, "%.*s", (int)sizeof row->id - 1, f[0]);
     row->eval = !strcmp(f[1], "eval");
     for (n = 2; n < 16; ++n) row->v[n] = *f[n] ? atof(f[n]) : 0;
     return 1;
