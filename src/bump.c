@@ -9,6 +9,7 @@
  * from a bumped plane's; MT_BUMP_DROP_DNDU omits it for studies.
  */
 #include "materia/bump.h"
+#include "textures/tex.h"
 
 /* The normal pbrt-v2 gives the shifted evaluation point:
  * Normalize(Cross(dpdu, dpdv) + delta dndu) (no texture of pbrt-v2 reads it;
@@ -38,7 +39,6 @@ static mt_vec3 bumped_tangent(mt_vec3 dpdu, mt_vec3 n, mt_vec3 dndu, mt_real shi
 void mt_bump(const mt_texture *d, const mt_diffgeom *dg_geom, const mt_diffgeom *dgs,
              mt_diffgeom *dg_bump, unsigned options)
 {
-    mt_diffgeom e = *dgs;
     mt_real du = shift(dgs->dudx, dgs->dudy), dv = shift(dgs->dvdx, dgs->dvdy);
     mt_real u_displace, v_displace, displace, len;
     mt_vec3 dpdu, dpdv, n;
@@ -46,18 +46,26 @@ void mt_bump(const mt_texture *d, const mt_diffgeom *dg_geom, const mt_diffgeom 
 
     *dg_bump = *dgs;
     if (!d) return;
-    /* shift the evaluation point du along u */
-    e.p = mt_v3_add(dgs->p, mt_v3_scale(dgs->dpdu, du));
-    e.u = dgs->u + du;
-    e.n = shifted_normal(dgs, dgs->dndu, du);
-    u_displace = mt_texture_eval_float(d, &e);
-    /* and dv along v */
-    e.p = mt_v3_add(dgs->p, mt_v3_scale(dgs->dpdv, dv));
-    e.u = dgs->u;
-    e.v = dgs->v + dv;
-    e.n = shifted_normal(dgs, dgs->dndv, dv);
-    v_displace = mt_texture_eval_float(d, &e);
     displace = mt_texture_eval_float(d, dgs);
+    if (mt__texture_is_constant(d)) {
+        /* the shifted points would give the same value (shinymetal bumps
+         * with a constant 0 at every hit): the same numbers, without
+         * building them */
+        u_displace = v_displace = displace;
+    } else {
+        mt_diffgeom e = *dgs;
+        /* shift the evaluation point du along u */
+        e.p = mt_v3_add(dgs->p, mt_v3_scale(dgs->dpdu, du));
+        e.u = dgs->u + du;
+        e.n = shifted_normal(dgs, dgs->dndu, du);
+        u_displace = mt_texture_eval_float(d, &e);
+        /* and dv along v */
+        e.p = mt_v3_add(dgs->p, mt_v3_scale(dgs->dpdv, dv));
+        e.u = dgs->u;
+        e.v = dgs->v + dv;
+        e.n = shifted_normal(dgs, dgs->dndv, dv);
+        v_displace = mt_texture_eval_float(d, &e);
+    }
 
     dpdu = bumped_tangent(dgs->dpdu, dgs->n, dgs->dndu, u_displace, displace, du, drop);
     dpdv = bumped_tangent(dgs->dpdv, dgs->n, dgs->dndv, v_displace, displace, dv, drop);

@@ -20,6 +20,8 @@ static mt_rgb constant_rgb(const mt_texture *t, const mt_diffgeom *dg)
 
 static const mt_texture_ops constant_ops = {"constant", constant_float, constant_rgb, NULL};
 
+int mt__texture_is_constant(const mt_texture *t) { return t->ops == &constant_ops; }
+
 mt_texture *mt__tex_constant(int is_float, mt_rgb v, mt_mode mode, mt_error *err)
 {
     constant *c;

@@ -32,6 +32,9 @@ struct mt_texture {
     long refs; /* atomic: textures are shared between materials and threads */
 };
 
+/* Whether t is a ConstantTexture (its value the same at every point). */
+int mt__texture_is_constant(const mt_texture *t);
+
 /* Allocates size bytes (a struct starting with mt_texture) with one reference. */
 void *mt__texture_alloc(size_t size, const mt_texture_ops *ops, int is_float, mt_mode mode,
                         mt_error *err);
