@@ -167,7 +167,7 @@ static void special_cases(const mt_texture *d)
     int ok;
     /* no displacement texture: the shading geometry as it is */
     mt_bump(NULL, &dg, &dg, &out, 0);
-    t_check(!memcmp(&dg, &out, sizeof dg), "bump: no texture leaves the geometry", "-");
+    t_check(!memcmp(&dg, &out, offsetof(mt_diffgeom, flip) + sizeof dg.flip), "bump: no texture leaves the geometry", "-");
     /* flipped orientation negates, then the geometric normal decides the side */
     dg.u = (mt_real)0.3;
     dg.flip = 1;
