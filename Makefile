@@ -64,12 +64,16 @@ endif
 
 # Link-time optimization of the programs (materia-render and the other
 # tools, the benchmarks, the shared library): the library's objects carry
-# both machine code and gcc's intermediate form (-ffat-lto-objects), so the
-# programs are optimized across files (about 6% off a render) while the tests
-# link the same machine code without it (-fno-lto: one LTO link per test
-# would cost minutes), and a program of the user's links libmateria.a either
-# way. Off under the sanitizers and where the compiler cannot do it (clang
-# before 17 has no fat objects); LTO=no turns it off, LTO=yes forces it.
+# both machine code and the compiler's intermediate form (-ffat-lto-objects),
+# so the programs are optimized across files (about 6% off a render) from an
+# archive of those objects (LTO_LIB), while the tests link the same machine
+# code without it (-fno-lto: one LTO link per test would cost minutes).
+# libmateria.a, the archive a user's program links, has the intermediate
+# form removed: a linker plugin would otherwise run the compiler's LTO pass
+# on every link of it, -flto or not, and fail where the user's compiler is
+# another version. Off under the sanitizers and where the compiler cannot do
+# it (clang before 17 has no fat objects); LTO=no turns it off, LTO=yes
+# forces it.
 LTO ?= auto
 ifeq ($(LTO),auto)
   ifeq ($(SANITIZE),)
@@ -80,12 +84,17 @@ ifeq ($(LTO),auto)
 else ifeq ($(LTO),yes)
   LTO_OK := yes
 endif
+OBJCOPY ?= objcopy
 ifeq ($(LTO_OK),yes)
   MT_CFLAGS += -flto=auto -ffat-lto-objects
   # gcc's link-time pass warns of reads it cannot follow through flags (the
   # BVH's lazily set-up triangle test) and ignores the pragma that answers it
-  # at compile time, where every file is still checked
-  MT_LDFLAGS += -Wno-maybe-uninitialized
+  # at compile time, where every file is still checked; a compiler that does
+  # not know the warning (clang) is not given the option
+  ifneq ($(NEED_DEPS),)
+    LTO_NOWARN := $(shell printf 'int main(void){return 0;}\n' | $(CC) -Wno-maybe-uninitialized -Werror -x c - -o /dev/null >/dev/null 2>&1 && echo -Wno-maybe-uninitialized)
+  endif
+  MT_LDFLAGS += $(LTO_NOWARN)
 endif
 
 ALL_CFLAGS   = $(MT_CFLAGS) $(CFLAGS)
@@ -110,11 +119,12 @@ BENCHES   := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 CONF_BIN  := $(BUILD)/bin/materia-conformance
 
 STATIC_LIB := $(BUILD)/libmateria.a
+LTO_LIB    := $(if $(filter yes,$(LTO_OK)),$(BUILD)/obj/libmateria-lto.a,$(STATIC_LIB))
 SHARED_LIB := $(BUILD)/libmateria.so.$(VERSION)
 SONAME     := libmateria.so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 
-.PHONY: all lib tools tests benches check check-full other-conformance bench demo golden install clean distclean help
+.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench demo golden install clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -130,13 +140,31 @@ $(CONFIG_H): Makefile
 	   echo '#define MT_USE_DOUBLE $(if $(filter double,$(PRECISION)),1,0)'; \
 	   echo '#define MT_VERSION "$(VERSION)"'; echo '#endif'; } > $@.tmp && mv $@.tmp $@
 
-$(BUILD)/obj/%.o: %.c $(CONFIG_H)
+# The compiler and its flags as this build directory last saw them: a change
+# (CFLAGS=..., LTO=no, another CC) rebuilds every object rather than mixing
+# objects of two configurations.
+FLAGS_STAMP := $(BUILD)/flags
+$(FLAGS_STAMP): FORCE
+	@mkdir -p $(dir $@)
+	@printf '%s\n' '$(subst ','\'',$(CC) $(ALL_CPPFLAGS) $(ALL_CFLAGS) $(ALL_LDFLAGS))' > $@.new; \
+	 if cmp -s $@.new $@; then rm -f $@.new; else mv $@.new $@; fi
+FORCE:
+
+$(BUILD)/obj/%.o: %.c $(CONFIG_H) $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
 
+# machine code only (see LTO above); objcopy keeps the archive's index
 $(STATIC_LIB): $(LIB_OBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^
+ifeq ($(LTO_OK),yes)
+	$(OBJCOPY) -R '.gnu.lto_*' -R '.gnu.debuglto_*' -R .llvm.lto $@
+
+$(LTO_LIB): $(LIB_OBJ)
+	@rm -f $@
+	$(AR) rcs $@ $^
+endif
 
 $(SHARED_LIB): $(LIB_OBJ)
 	$(CC) -shared -Wl,-soname,$(SONAME) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $^ $(MT_LDLIBS) $(LDLIBS)
@@ -147,17 +175,17 @@ $(BUILD)/bin/materia-conformance: $(CONF_OBJ) $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(CONF_OBJ) $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
-$(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(STATIC_LIB)
+$(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(LTO_LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
 
 $(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
-$(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(STATIC_LIB)
+$(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(LTO_LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
 
 # Every test binary, then the conformance suite; one summary line at the end.
 # The suite compares this build with the other precision's (float versus

@@ -185,6 +185,31 @@ static void special_cases(const mt_texture *d)
     t_check(mt_v3_is_finite(out.n) && out.n.z == 1, "bump: a degenerate bumped frame keeps the "
             "shading normal (bump-degenerate)", "%g %g %g", (double)out.n.x, (double)out.n.y,
             (double)out.n.z);
+    /* a constant displacement skips the shifted evaluations; the same value
+     * through a texture that is not a constant (0.25 x 1) takes the whole
+     * path: the same bits, on a curved patch with differentials */
+    {
+        mt_texture *one = tu_const(1, 1, 0, 0), *sc;
+        mt_error err;
+        mt_diffgeom a, b;
+        int same = 1, k;
+        sc = mt__tex_scale(1, c, one, MT_MODE_PBRT_V2, &err);
+        for (k = 0; sc && k < 4; ++k) {
+            dg = mt_diffgeom_default();
+            dg.u = (mt_real)0.1 * (mt_real)k, dg.v = (mt_real)0.7;
+            dg.dpdu = mt_v3(1, (mt_real)0.2 * (mt_real)k, 0), dg.dpdv = mt_v3(0, 1, (mt_real)0.3);
+            dg.dndu = mt_v3((mt_real)0.5, 0, 0), dg.dndv = mt_v3(0, (mt_real)-0.25, 0);
+            dg.dudx = (mt_real)0.01, dg.dvdy = (mt_real)0.02;
+            dg.dpdx = mt_v3((mt_real)0.01, 0, 0), dg.dpdy = mt_v3(0, (mt_real)0.02, 0);
+            mt_bump(c, &dg, &dg, &a, k & 1 ? MT_BUMP_DROP_DNDU : 0u);
+            mt_bump(sc, &dg, &dg, &b, k & 1 ? MT_BUMP_DROP_DNDU : 0u);
+            same &= !memcmp(&a, &b, offsetof(mt_diffgeom, flip) + sizeof a.flip);
+        }
+        t_check(sc && same, "bump: a constant displacement gives the bits of the whole computation",
+                "%s", sc ? "the bumped geometry differs" : err.message);
+        mt_texture_release(sc);
+        mt_texture_release(one);
+    }
     mt_texture_release(c);
 }
 

@@ -123,7 +123,7 @@ static void ball_case(const char *label, mt__kdtree *t, const mt_real *pts, int 
         }
         from_grid += t->grid != NULL;
         for (q = 0; q < 300; ++q) {
-            mt_real p[3], radii[5];
+            mt_real p[3], radii[7];
             if (q < 100) {
                 int i = (int)mt_rng_bounded(r, (uint32_t)n);
                 /* half of them exactly at a point: on its node's split */
@@ -137,7 +137,10 @@ static void ball_case(const char *label, mt__kdtree *t, const mt_real *pts, int 
             if (q == 299) p[1] = (mt_real)NAN;
             radii[0] = 1e-4f, radii[1] = 1e-3f, radii[2] = 4e-3f;
             radii[3] = index_r2[ix] > 0 ? index_r2[ix] : 8e-3f, radii[4] = 0.2f;
-            for (k = 0; k < 5; ++k)
+            /* the squared distances of the ties lattice's neighbours (1/8
+             * apart), exactly: a point there is not within (strictly less) */
+            radii[5] = (mt_real)1 / 64, radii[6] = (mt_real)1 / 32;
+            for (k = 0; k < 7; ++k)
                 for (c = 0; c < 4; ++c) {
                     mt_real max2 = radii[k];
                     mt__kdball b;
@@ -181,6 +184,51 @@ static void ball_case(const char *label, mt__kdtree *t, const mt_real *pts, int 
     t_check(wrong == 0 && (n < 2 || from_grid == 2), name,
             "%d of %d searches differ (%d overflow the cap); %d of 2 indexes built", wrong, asked,
             overflows, from_grid);
+}
+
+/* A point with an infinite coordinate (reachable from directions that are
+ * finite but far from unit length) leaves the grid without a finite box:
+ * the index must give way to the tree rather than loop or answer wrongly. */
+static void test_kdtree_infinite(void)
+{
+    enum { N = 400 };
+    static mt_real pts[3 * N];
+    static hits h;
+    static const mt_real bad[] = {INFINITY, -INFINITY};
+    mt_rng r;
+    int i, k, q, wrong = 0, indexed = 0, failed = 0;
+    mt_rng_seed(&r, 9, 1);
+    for (k = 0; k < 2 * 3; ++k) {
+        mt__kdtree t;
+        mt_error err;
+        for (i = 0; i < 3 * N; ++i) pts[i] = mt_rng_uniform(&r);
+        pts[3 * 17 + k / 2] = bad[k % 2];
+        if (mt__kdtree_build(&t, pts, N, &err) != MT_OK) {
+            failed++;
+            continue;
+        }
+        if (mt__kdtree_index(&t, 8e-3f, &err) != MT_OK) failed++;
+        indexed += t.grid != NULL;
+        for (q = 0; q < 100; ++q) {
+            mt_real p[3], max2 = 8e-3f;
+            mt__kdball b;
+            int32_t item[64];
+            mt_real d2[64];
+            int n, j;
+            for (i = 0; i < 3; ++i) p[i] = pts[3 * (q % 16) + i];
+            mt__kdtree_ball(&t, p, max2, 64, &b);
+            h.n = 0;
+            mt__kdtree_lookup(&t, p, collect, &h, &max2);
+            n = b.n < 0 ? -1 : mt__kdball_select(&t, p, &b, 8e-3f, item, d2);
+            if (n != h.n) wrong++;
+            for (j = 0; j < n && j < h.n; ++j)
+                if (item[j] != h.items[j] || d2[j] != h.d2[j]) wrong++;
+        }
+        mt__kdtree_free(&t);
+    }
+    t_check(failed == 0 && indexed == 0 && wrong == 0,
+            "k-d tree with an infinite coordinate: no grid (the tree answers), same answers",
+            "%d builds or indexes failed, %d of 6 got a grid, %d searches differ", failed, indexed, wrong);
 }
 
 static void kdtree_case(const char *label, const mt_real *pts, int n, mt_rng *r)
@@ -269,6 +317,7 @@ static void test_kdtree(void)
         pts[3 * i + 2] = (mt_real)((i * 7) % 13) / 13;
     }
     kdtree_case("sorted", pts, N, &r);
+    test_kdtree_infinite();
     for (i = 0; i < 3 * 200; ++i) pts[i] = 0.25f;
     kdtree_case("identical", pts, 200, &r);
     kdtree_case("one point", pts, 1, &r);
@@ -417,6 +466,76 @@ static void test_irregular_search(void)
     }
 }
 
+/* The irregular BRDF's f with its data's grid index and without it (every
+ * search made by the tree): the same bits, pbrt-v2 and corrected modes,
+ * over the upper hemisphere and through it. */
+static void grid_vs_tree(mt_arena *a, mt_measured *m, const char *label)
+{
+    enum { PAIRS = 3000 };
+    static mt_rgb with[2][PAIRS];
+    mt_bxdf *b[2];
+    mt_rng r;
+    mt_error err;
+    char name[160];
+    int i, k, differ = 0, had_grid = m->tree.grid != NULL;
+    b[0] = mt_irregular_isotropic_brdf_create(a, M, m, &err);
+    b[1] = mt_irregular_isotropic_brdf_create(a, C, m, &err);
+    snprintf(name, sizeof name, "%s: f from the grid index and from the tree alone: the same bits", label);
+    if (!b[0] || !b[1]) {
+        t_fail(name, "BxDF creation failed: %s", err.message);
+        return;
+    }
+    for (k = 0; k < 2; ++k) {
+        mt_rng_seed(&r, 11, 1);
+        for (i = 0; i < PAIRS; ++i) {
+            mt_vec3 wo = random_dir(&r, i < 2 * PAIRS / 3), wi = random_dir(&r, i < PAIRS / 3);
+            mt_rgb f[2];
+            f[0] = mt_bxdf_f(b[0], wo, wi);
+            f[1] = mt_bxdf_f(b[1], wo, wi);
+            if (k == 0) with[0][i] = f[0], with[1][i] = f[1];
+            else differ += memcmp(&f[0], &with[0][i], sizeof f[0]) != 0 || memcmp(&f[1], &with[1][i], sizeof f[1]) != 0;
+        }
+        mt__kdtree_index_free(&m->tree);
+    }
+    /* the index back, as the data had it */
+    if (mt__kdtree_index(&m->tree, MT__IRREG_WIDE_D2, &err) != MT_OK) differ++;
+    t_check(had_grid && differ == 0, name, "%s; %d of %d pairs differ", had_grid ? "indexed" : "no index",
+            differ, PAIRS);
+}
+
+static void test_irregular_grid(mt_arena *a)
+{
+    enum { N = 4000 };
+    static mt_vec3 wo[N], wi[N];
+    static mt_rgb v[N];
+    mt_rng r;
+    mt_error err;
+    mt_measured *m;
+    int i;
+    mt_rng_seed(&r, 10, 1);
+    for (i = 0; i < N; ++i) {
+        wo[i] = random_dir(&r, 1);
+        wi[i] = random_dir(&r, 1);
+        v[i] = mt_rgb_make(mt_rng_uniform(&r), mt_rng_uniform(&r) - (mt_real)0.2, 3 * mt_rng_uniform(&r));
+    }
+    m = mt_measured_irregular_create(wo, wi, v, N, &err);
+    if (!t_check(m != NULL, "irregular synthetic data: created", "%s", err.message)) return;
+    grid_vs_tree(a, m, "irregular synthetic data (4000 samples)");
+    mt_measured_release(m);
+    /* directions far from unit length are admitted; one whose remapped point
+     * is not finite leaves the data without a grid, still searchable */
+    wo[5] = wi[5] = mt_v3(0, 0, (mt_real)1e30); /* cos_o cos_i: inf in float */
+    m = mt_measured_irregular_create(wo, wi, v, N, &err);
+    if (t_check(m != NULL, "irregular data with two directions of length 1e30: created", "%s", err.message)) {
+        mt_rgb f = mt_bxdf_f(mt_irregular_isotropic_brdf_create(a, M, m, &err), wo[0], wi[0]);
+        /* in float the remapped point's z is inf: the k-d tree answers */
+        t_check(mt_rgb_is_finite(f) && (MT_USE_DOUBLE || m->tree.grid == NULL),
+                "irregular data with two directions of length 1e30: f finite (float: no grid index)",
+                "f = (%g, %g, %g), %s grid index", f.c[0], f.c[1], f.c[2], m->tree.grid ? "a" : "no");
+        mt_measured_release(m);
+    }
+}
+
 /* ---- the real .brdf files --------------------------------------------------- */
 
 /* The file's numbers counted independently: whitespace-separated words
@@ -531,6 +650,7 @@ static void test_real_file(const char *dir, const char *file, mt_arena *a)
         t_pass(name);
     printf("  %s: %d of 2000 pairs over the whole sphere give 0 (black: no weight, or every "
            "channel clamped)\n", file, empty);
+    grid_vs_tree(a, m, file);
     mt_measured_release(m);
 }
 
@@ -985,6 +1105,7 @@ int main(void)
     test_kdtree();
     test_remap();
     test_irregular_search();
+    test_irregular_grid(a);
     test_real_files(a);
     test_pbrt_values();
     if (!t_tmpdir_create("measured")) {

@@ -97,14 +97,14 @@ static mt_rgb irreg_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
 {
     const mt_measured *d = ((const measured_bxdf *)b)->data;
     mt_vec3 m = remap(wo, wi, b->mode);
-    mt_real p[3], last = (mt_real)0.001;
+    mt_real p[3], last = MT__IRREG_FIRST_D2;
     p[0] = m.x;
     p[1] = m.y;
     p[2] = m.z;
     for (;;) {
         mt__kdball ball;
         int k;
-        mt__kdtree_ball(&d->tree, p, 8 * last, IRREG_KEEP, &ball);
+        mt__kdtree_ball(&d->tree, p, 8 * last, IRREG_KEEP, &ball); /* MT__IRREG_WIDE_D2 first */
         for (k = 0; k < 4; ++k, last *= 2) {
             irreg_sum s;
             int32_t item[IRREG_KEEP];

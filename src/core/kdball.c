@@ -97,20 +97,31 @@ static void grid_shape(struct mt__kdgrid *g, const mt_real hi[3], mt_real radius
 mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err)
 {
     struct mt__kdgrid *g;
-    mt_real hi[3];
+    mt_real lo3[3], hi[3];
     size_t cells;
     uint32_t v, *fill;
     uint8_t *depth;
     int c, i;
     mt__kdtree_index_free(t);
-    if (t->n <= 0 || !(max_d2 > 0) || !isfinite(max_d2)) return MT_OK;
+    /* node numbers share 24 bits with the depth and axis (mt__kdedge) */
+    if (t->n <= 0 || t->n > (1 << 24) || !(max_d2 > 0) || !isfinite(max_d2)) return MT_OK;
+    /* the grid spans the points' box: where a coordinate is infinite (an
+     * extent of inf or NaN) no grid of finite cells covers it; the tree answers */
+    for (c = 0; c < 3; ++c) lo3[c] = hi[c] = t->nodes[0].p[c];
+    for (i = 1; i < t->n; ++i)
+        for (c = 0; c < 3; ++c) {
+            lo3[c] = mt_min(lo3[c], t->nodes[i].p[c]);
+            hi[c] = mt_max(hi[c], t->nodes[i].p[c]);
+        }
+    for (c = 0; c < 3; ++c)
+        if (!isfinite(lo3[c]) || !isfinite(hi[c]) || !isfinite(hi[c] - lo3[c])) return MT_OK;
     g = mt__calloc(1, sizeof *g);
     if (!g) goto nomem;
     t->grid = g;
     g->max_d2 = max_d2;
     g->edge = mt__malloc((size_t)t->n * sizeof *g->edge);
     depth = mt__malloc((size_t)t->n);
-    if (!g->edge || !depth || t->n > (1 << 24)) {
+    if (!g->edge || !depth) {
         mt__free(depth);
         goto nomem;
     }
@@ -137,12 +148,7 @@ mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err)
         }
     }
     mt__free(depth);
-    for (c = 0; c < 3; ++c) g->lo[c] = hi[c] = t->nodes[0].p[c];
-    for (i = 1; i < t->n; ++i)
-        for (c = 0; c < 3; ++c) {
-            g->lo[c] = mt_min(g->lo[c], t->nodes[i].p[c]);
-            hi[c] = mt_max(hi[c], t->nodes[i].p[c]);
-        }
+    for (c = 0; c < 3; ++c) g->lo[c] = lo3[c];
     grid_shape(g, hi, mt_sqrt(max_d2), t->n);
     cells = (size_t)g->dim[0] * (size_t)g->dim[1] * (size_t)g->dim[2];
     g->start = mt__calloc(cells + 1, sizeof *g->start);
@@ -221,6 +227,7 @@ void mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, in
     const struct mt__kdgrid *g = t->grid;
     int lo[3], hi[3], c, y, z, n = 0;
     if (cap > MT__KDBALL_MAX) cap = MT__KDBALL_MAX;
+    if (cap < 0) cap = 0;
     b->cap = cap;
     if (!g || !(max_d2 <= g->max_d2) || !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
         mt_real r2 = max_d2;

@@ -76,7 +76,7 @@ typedef struct mt__kdball {
 } mt__kdball;
 
 /* Finds the points within max_d2 of p, at most cap (<= MT__KDBALL_MAX) of
- * them. Answered from the index of mt__kdtree_index when it covers max_d2
+ * them (cap < 0 counts as 0). Answered from the index of mt__kdtree_index when it covers max_d2
  * and p is finite, else by the tree; the answers are the same bits. */
 void mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, int cap,
                      mt__kdball *b);
@@ -100,8 +100,9 @@ int mt__kdball_select(const mt__kdtree *t, const mt_real p[3], const mt__kdball 
 /* Builds an index (kdball.c) for mt__kdtree_ball's searches of squared radius
  * up to max_d2: a uniform grid of the points, and each node's parent and
  * depth, from which the tree's visiting order is recovered. A tree deeper
- * than 31 levels, or a radius that is 0 or not finite, gets no index (the
- * tree answers). MT_ERR_NOMEM with err filled when memory is exhausted. */
+ * than 31 levels or of more than 2^24 points, one with a coordinate that is
+ * not finite, or a radius that is 0 or not finite, gets no index (the tree
+ * answers). MT_ERR_NOMEM with err filled when memory is exhausted. */
 mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err);
 void mt__kdtree_index_free(mt__kdtree *t);
 

@@ -30,10 +30,9 @@ mt_measured *mt__measured_irregular(mt_real *points, mt_rgb *values, int n, mt_e
     }
     m->points = points;
     m->values = values;
-    /* the first search of IrregIsotropicBRDF::f (squared radius 8 x 0.001,
-     * bxdfs/measured.c) is answered from the grid */
+    /* the first search of IrregIsotropicBRDF::f is answered from the grid */
     if (mt__kdtree_build(&m->tree, points, n, err) != MT_OK ||
-        mt__kdtree_index(&m->tree, 8 * (mt_real)0.001, err) != MT_OK) {
+        mt__kdtree_index(&m->tree, MT__IRREG_WIDE_D2, err) != MT_OK) {
         mt_measured_release(m);
         return NULL;
     }

@@ -20,6 +20,12 @@ struct mt_measured {
     mt_real *table;
 };
 
+/* pbrt-v2 IrregIsotropicBRDF::f's first squared search radius, and the
+ * wider one of the search that serves its first tries (bxdfs/measured.c);
+ * the data's grid index (core/kdball.c) is built for the wider one. */
+#define MT__IRREG_FIRST_D2 ((mt_real)0.001)
+#define MT__IRREG_WIDE_D2 (8 * MT__IRREG_FIRST_D2)
+
 /* Irregular data owning points (3 n remapped coordinates) and values (n),
  * both from mt__malloc: they are freed here on failure too. */
 mt_measured *mt__measured_irregular(mt_real *points, mt_rgb *values, int n, mt_error *err);
