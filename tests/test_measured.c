@@ -108,7 +108,7 @@ static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(co
  * radii, NaN queries). */
 static void ball_case(const char *label, mt__kdtree *t, const mt_real *pts, int n, mt_rng *r)
 {
-    static const mt_real index_r2[] = {0, 8e-3f, 0.05f};
+    static const mt_real index_r2[] = {0, 8e-3f, (mt_real)1 / 16};
     static const int caps[] = {1, 3, 32, 64};
     static hits h;
     int32_t item[64];
@@ -138,8 +138,9 @@ static void ball_case(const char *label, mt__kdtree *t, const mt_real *pts, int 
             radii[0] = 1e-4f, radii[1] = 1e-3f, radii[2] = 4e-3f;
             radii[3] = index_r2[ix] > 0 ? index_r2[ix] : 8e-3f, radii[4] = 0.2f;
             /* the squared distances of the ties lattice's neighbours (1/8
-             * apart), exactly: a point there is not within (strictly less) */
-            radii[5] = (mt_real)1 / 64, radii[6] = (mt_real)1 / 32;
+             * apart), exactly: a point there is not within (strictly less);
+             * 1/16's quarter is 1/64 again, for mt__kdball_select */
+            radii[5] = (mt_real)1 / 64, radii[6] = (mt_real)1 / 16;
             for (k = 0; k < 7; ++k)
                 for (c = 0; c < 4; ++c) {
                     mt_real max2 = radii[k];
@@ -478,6 +479,13 @@ static void grid_vs_tree(mt_arena *a, mt_measured *m, const char *label)
     mt_error err;
     char name[160];
     int i, k, differ = 0, had_grid = m->tree.grid != NULL;
+    {
+        /* and the index serves the first search's radius (f's 8 x 0.001) */
+        mt__kdball ball;
+        mt_real p[3] = {(mt_real)0.5, (mt_real)0.5, (mt_real)0.5};
+        mt__kdtree_ball(&m->tree, p, 8 * MT__IRREG_FIRST_D2, 64, &ball);
+        had_grid &= !ball.ordered;
+    }
     b[0] = mt_irregular_isotropic_brdf_create(a, M, m, &err);
     b[1] = mt_irregular_isotropic_brdf_create(a, C, m, &err);
     snprintf(name, sizeof name, "%s: f from the grid index and from the tree alone: the same bits", label);

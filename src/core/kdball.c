@@ -105,16 +105,17 @@ mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err)
     mt__kdtree_index_free(t);
     /* node numbers share 24 bits with the depth and axis (mt__kdedge) */
     if (t->n <= 0 || t->n > (1 << 24) || !(max_d2 > 0) || !isfinite(max_d2)) return MT_OK;
-    /* the grid spans the points' box: where a coordinate is infinite (an
+    /* the grid spans the points' box: where a coordinate is not finite (an
      * extent of inf or NaN) no grid of finite cells covers it; the tree answers */
     for (c = 0; c < 3; ++c) lo3[c] = hi[c] = t->nodes[0].p[c];
-    for (i = 1; i < t->n; ++i)
+    for (i = 0; i < t->n; ++i)
         for (c = 0; c < 3; ++c) {
+            if (!isfinite(t->nodes[i].p[c])) return MT_OK;
             lo3[c] = mt_min(lo3[c], t->nodes[i].p[c]);
             hi[c] = mt_max(hi[c], t->nodes[i].p[c]);
         }
     for (c = 0; c < 3; ++c)
-        if (!isfinite(lo3[c]) || !isfinite(hi[c]) || !isfinite(hi[c] - lo3[c])) return MT_OK;
+        if (!isfinite(hi[c] - lo3[c])) return MT_OK;
     g = mt__calloc(1, sizeof *g);
     if (!g) goto nomem;
     t->grid = g;
