@@ -74,7 +74,7 @@ void mt__kdtree_index_free(mt__kdtree *t)
  * of a quarter to two radii, alike or not along the axes, were within 10%
  * of each other in bench/measured, this one at the best end. The cells grow
  * until there are at most 8 a point (4096 at least) and 1024 an axis. */
-static void grid_shape(struct mt__kdgrid *g, const mt_real hi[3], mt_real radius, int n)
+static double grid_shape(struct mt__kdgrid *g, const mt_real hi[3], mt_real radius, int n)
 {
     static const double share[3] = {1, 1, 1};
     double scale = (double)radius, limit = 8.0 * n + 4096;
@@ -92,6 +92,7 @@ static void grid_shape(struct mt__kdgrid *g, const mt_real hi[3], mt_real radius
         scale *= 1.25;
     }
     for (c = 0; c < 3; ++c) g->inv[c] = (mt_real)(1.0 / (share[c] * scale));
+    return scale;
 }
 
 mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err)
@@ -150,7 +151,12 @@ mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err)
     }
     mt__free(depth);
     for (c = 0; c < 3; ++c) g->lo[c] = lo3[c];
-    grid_shape(g, hi, mt_sqrt(max_d2), t->n);
+    /* a point far from the rest stretches the cells until the others share
+     * a few of them, and each search would scan them all: the tree answers */
+    if (grid_shape(g, hi, mt_sqrt(max_d2), t->n) > 64.0 * (double)mt_sqrt(max_d2)) {
+        mt__kdtree_index_free(t);
+        return MT_OK;
+    }
     cells = (size_t)g->dim[0] * (size_t)g->dim[1] * (size_t)g->dim[2];
     g->start = mt__calloc(cells + 1, sizeof *g->start);
     g->xyz = mt__malloc((size_t)t->n * 3 * sizeof *g->xyz);

@@ -101,8 +101,9 @@ int mt__kdball_select(const mt__kdtree *t, const mt_real p[3], const mt__kdball 
  * up to max_d2: a uniform grid of the points, and each node's parent and
  * depth, from which the tree's visiting order is recovered. A tree deeper
  * than 31 levels or of more than 2^24 points, one with a coordinate that is
- * not finite, or a radius that is 0 or not finite, gets no index (the tree
- * answers). MT_ERR_NOMEM with err filled when memory is exhausted. */
+ * not finite, one whose grid would need cells of more than 64 radii (a point
+ * far from the rest), or a radius that is 0 or not finite, gets no index
+ * (the tree answers). MT_ERR_NOMEM with err filled when memory is exhausted. */
 mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err);
 void mt__kdtree_index_free(mt__kdtree *t);
 
