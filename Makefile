@@ -158,12 +158,10 @@ $(BUILD)/obj/%.o: %.c $(CONFIG_H) $(FLAGS_STAMP)
 $(STATIC_LIB): $(LIB_OBJ)
 	@rm -f $@ $@.tmp
 	$(AR) rcs $@.tmp $^
-ifeq ($(LTO_OK),yes)
-	$(OBJCOPY) -R '.gnu.lto_*' -R '.gnu.debuglto_*' -R .llvm.lto $@.tmp
-endif
+	$(if $(filter yes,$(LTO_OK)),$(OBJCOPY) -R '.gnu.lto_*' -R '.gnu.debuglto_*' -R .llvm.lto $@.tmp)
 	mv $@.tmp $@
-ifeq ($(LTO_OK),yes)
 
+ifeq ($(LTO_OK),yes)
 $(LTO_LIB): $(LIB_OBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^
