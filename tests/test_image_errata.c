@@ -25,6 +25,7 @@
 #include "materia/mipmap.h"
 #include "materia/query.h"
 #include "support/check.h"
+#include "support/tquery.h"
 #include "support/tfiles.h"
 
 #define V2 MT_MODE_PBRT_V2
@@ -385,22 +386,7 @@ static void test_data_window(void)
 
 /* ---- the image-map texture through a query session -------------------- */
 
-static int ask(mt_query *q, const char *line, double *v, int n)
-{
-    char out[512], *p = out, *end;
-    int k;
-    if (!mt_query_line(q, line, out, sizeof out)) return 0;
-    if (n == 0) return !strcmp(out, "ok") ? 1 : (printf("  %s -> %s\n", line, out), 0);
-    for (k = 0; k < n; k++) {
-        v[k] = strtod(p, &end);
-        if (end == p) {
-            printf("  %s -> %s\n", line, out);
-            return 0;
-        }
-        p = end;
-    }
-    return 1;
-}
+static int ask(mt_query *q, const char *line, double *v, int n) { return t_query_ask(q, line, v, n); }
 
 /* The values a session in mode gives: texture "c" (float.exr) and "y" (a
  * float texture of y.exr) at texel (0, 0) of 2 x 2 images, "p" (rows.pfm) at

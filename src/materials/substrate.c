@@ -1,5 +1,6 @@
 /* substrate (pbrt-v2 substrate.cpp): FresnelBlend with the Ashikhmin-Shirley
- * anisotropic distribution, exponents 1/uroughness and 1/vroughness. */
+ * anisotropic distribution, exponents 1/uroughness and 1/vroughness. The
+ * lobe is added even when Kd and Ks are both black, as pbrt-v2 does. */
 #include "materials/material_impl.h"
 
 enum { KD, KS, UROUGH, VROUGH };
@@ -12,7 +13,6 @@ static mt_status substrate_add(const mt_material *m, mt_bsdf *b, const mt_diffge
 {
     mt_rgb d = MT_RGB(m, KD, dgs), s = MT_RGB(m, KS, dgs);
     mt_real u = MT_FLOAT(m, UROUGH, dgs), v = MT_FLOAT(m, VROUGH, dgs);
-    if (mt_rgb_is_black(d) && mt_rgb_is_black(s)) return MT_OK;
     return mt_bsdf_add(b, mt_fresnelblend_create(a, m->mode, d, s, mt_anisotropic(1 / u, 1 / v), err), err);
 }
 

@@ -1,23 +1,27 @@
 /*
  * translucent (pbrt-v2 translucent.cpp): diffuse and glossy lobes, each both
  * reflected (scaled by "reflect") and transmitted as a mirrored BRDF (scaled
- * by "transmit"). pbrt-v2 builds the glossy Fresnel term as
- * FresnelDielectric(index, 1) (erratum dielectric-side).
+ * by "transmit"). pbrt-v2's translucent has no "index" parameter: the index
+ * is 1.5, the BSDF's eta and the glossy Fresnel term's, which pbrt-v2 builds
+ * as FresnelDielectric(1.5, 1) (erratum dielectric-side). A lobe whose scale
+ * (reflect or transmit times Kd or Ks) is black is left out, as in pbrt-v2.
  */
 #include "materials/material_impl.h"
 
-enum { KD, KS, ROUGHNESS, REFLECT, TRANSMIT, INDEX };
+enum { KD, KS, ROUGHNESS, REFLECT, TRANSMIT };
 static const mt_tex_slot slots[] = {{"Kd", 0, {0.25f, 0.25f, 0.25f}}, {"Ks", 0, {0.25f, 0.25f, 0.25f}},
                                     {"roughness", 1, {0.1f}},         {"reflect", 0, {0.5f, 0.5f, 0.5f}},
-                                    {"transmit", 0, {0.5f, 0.5f, 0.5f}}, {"index", 1, {1.5f}}};
+                                    {"transmit", 0, {0.5f, 0.5f, 0.5f}}};
 
 static int translucent_max(const mt_material *m) { return 4; }
 
-static mt_real translucent_eta(const mt_material *m, const mt_diffgeom *dgs) { return MT_FLOAT(m, INDEX, dgs); }
+#define TRANSLUCENT_IOR 1.5f
+
+static mt_real translucent_eta(const mt_material *m, const mt_diffgeom *dgs) { return TRANSLUCENT_IOR; }
 
 static mt_status translucent_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
 {
-    mt_real ior = MT_FLOAT(m, INDEX, dgs);
+    mt_real ior = TRANSLUCENT_IOR;
     mt_rgb r = MT_RGB(m, REFLECT, dgs), t = MT_RGB(m, TRANSMIT, dgs), kd, ks;
     mt_mode mode = m->mode;
     if (mt_rgb_is_black(r) && mt_rgb_is_black(t)) return MT_OK;
@@ -48,5 +52,5 @@ static const mt_material_ops ops = {"translucent", translucent_max, translucent_
 mt_material *mt__translucent_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
                                     mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &ops, slots, 6, tp, err);
+    return mt__material_new(sizeof(mt_material), &ops, slots, 5, tp, err);
 }

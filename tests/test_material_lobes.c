@@ -1,0 +1,256 @@
+/*
+ * Which lobes each material adds when a parameter is black, as pbrt-v2's
+ * GetBSDF decides (its materials directory): matte, shinymetal, metal, plastic and
+ * substrate add every lobe whatever its scale; uber, glass, mirror,
+ * translucent, subsurface and kdsubsurface leave out a lobe whose scale is
+ * black (IsBlack) at the shading point; mix keeps every component of both
+ * materials. A lobe left in or out changes the pdf (it averages over the
+ * components) and which component a uComponent picks, so each case is told
+ * apart by the pdf, the sampled direction and the sampled flags, through the
+ * query protocol in both modes (none of this is an erratum: a black lobe
+ * left in is unbiased).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "materia.h"
+#include "materia/query.h"
+#include "support/check.h"
+#include "support/tquery.h"
+
+#define WO "0 0.6 0.8"
+#define WI "0.48 -0.36 0.8"
+#define COS_WI 0.8
+#define EVAL "eval " WO " " WI
+
+static mt_query *q;
+static const char *mode_name;
+
+static int ask(const char *line, double *v, int n) { return t_query_ask(q, line, v, n); }
+
+/* f (3) and pdf of EVAL for the material statement mat. */
+static int eval_of(const char *mat, double e[4])
+{
+    return ask(mat, NULL, 0) && ask(EVAL, e, 4);
+}
+
+/* wi (3), f (3), pdf, flags of "sample WO uc 0.9 0.3". */
+static int sample_of(const char *mat, double uc, double s[8])
+{
+    char line[128];
+    snprintf(line, sizeof line, "sample " WO " %g 0.9 0.3", uc);
+    return ask(mat, NULL, 0) && ask(line, s, 8);
+}
+
+static void name_of(char *buf, size_t n, const char *what)
+{
+    snprintf(buf, n, "lobes %s: %s", mode_name, what);
+}
+
+static void near(double got, double want, const char *what)
+{
+    char name[160];
+    name_of(name, sizeof name, what);
+    t_rel(got, want, 1e-5, 1e-6, name);
+}
+
+static void same_sample(const double *a, const double *b, const char *what)
+{
+    char name[160];
+    int k, ok = a[7] == b[7];
+    for (k = 0; k < 3; k++) ok = ok && fabs(a[k] - b[k]) <= 1e-5;
+    ok = ok && t_reldiff(a[6], b[6], 1e-6) <= 1e-5;
+    name_of(name, sizeof name, what);
+    t_check(ok, name, "wi (%g %g %g) pdf %g flags %g, want (%g %g %g) pdf %g flags %g", a[0], a[1], a[2], a[6],
+            a[7], b[0], b[1], b[2], b[6], b[7]);
+}
+
+static void flags_are(const double *s, int flags, double pdf, const char *what)
+{
+    char name[160];
+    name_of(name, sizeof name, what);
+    t_check((int)s[7] == flags && t_reldiff(s[6], pdf, 1e-6) <= 1e-5, name, "flags %g pdf %g, want %d and %g",
+            s[7], s[6], flags, pdf);
+}
+
+static void failed(const double *s, const char *what)
+{
+    char name[160];
+    name_of(name, sizeof name, what);
+    t_check(s[6] == 0 && s[7] == 0 && s[0] == 0 && s[1] == 0 && s[2] == 0, name,
+            "sampling should fail (no component): pdf %g flags %g", s[6], s[7]);
+}
+
+/* matte and shinymetal: every lobe whatever its scale. */
+static void always_added(void)
+{
+    double d[4], e[4], sd[8], s[8];
+    if (!eval_of("Material \"matte\"", d) || !sample_of("Material \"matte\"", 0.3, sd)) return;
+    if (eval_of("Material \"matte\" \"rgb Kd\" [0 0 0]", e)) {
+        near(e[3], COS_WI / MT_PI, "matte Kd 0: pdf cos/pi");
+        near(e[0], 0, "matte Kd 0: f 0");
+    }
+    if (sample_of("Material \"matte\" \"rgb Kd\" [0 0 0]", 0.3, s)) same_sample(s, sd, "matte Kd 0: Lambertian sample");
+    if (eval_of("Material \"matte\" \"rgb Kd\" [0 0 0] \"float sigma\" [30]", e))
+        near(e[3], COS_WI / MT_PI, "matte Kd 0 sigma 30: Oren-Nayar pdf cos/pi");
+    if (sample_of("Material \"matte\" \"rgb Kd\" [0 0 0] \"float sigma\" [-5]", 0.3, s))
+        same_sample(s, sd, "matte sigma -5: clamped to 0, Lambertian");
+
+    if (!eval_of("Material \"shinymetal\"", d) || !sample_of("Material \"shinymetal\"", 0.3, sd)) return;
+    if (eval_of("Material \"shinymetal\" \"rgb Kr\" [0 0 0]", e)) near(e[3], d[3], "shinymetal Kr 0: pdf of two lobes");
+    if (sample_of("Material \"shinymetal\" \"rgb Kr\" [0 0 0]", 0.3, s))
+        same_sample(s, sd, "shinymetal Kr 0: glossy sample, pdf halved");
+    if (sample_of("Material \"shinymetal\" \"rgb Kr\" [0 0 0] \"rgb Ks\" [0 0 0]", 0.7, s)) {
+        flags_are(s, 17, 0.5, "shinymetal Kr 0 Ks 0: specular lobe kept");
+        near(s[1], -0.6, "shinymetal Kr 0: mirror direction");
+        /* FresnelApproxEta(0) = 1, k = 0: ((1 - cos)/(1 + cos))^2 / cos */
+        near(s[3], (0.2 / 1.8) * (0.2 / 1.8) / 0.8, "shinymetal Kr 0: eta-1 conductor, not black");
+    }
+}
+
+/* plastic and substrate: pbrt-v2 adds their lobes unconditionally. */
+static void plastic_substrate(void)
+{
+    double d[4], e[4], sd[8], s[8], sm[8];
+    if (!eval_of("Material \"plastic\"", d) || !sample_of("Material \"plastic\"", 0.7, sd) ||
+        !sample_of("Material \"matte\"", 0.3, sm))
+        return;
+    if (eval_of("Material \"plastic\" \"rgb Kd\" [0 0 0]", e)) {
+        near(e[3], d[3], "plastic Kd 0: pdf averages two lobes");
+        near(e[0], d[0] - 0.25 / MT_PI, "plastic Kd 0: f is the coat's");
+    }
+    if (sample_of("Material \"plastic\" \"rgb Kd\" [0 0 0]", 0.3, s)) {
+        char name[160];
+        name_of(name, sizeof name, "plastic Kd 0: uc 0.3 picks the black Lambertian");
+        t_check((int)s[7] == 5 && fabs(s[0] - sm[0]) + fabs(s[1] - sm[1]) + fabs(s[2] - sm[2]) <= 3e-5, name,
+                "flags %g wi (%g %g %g), want 5 and (%g %g %g)", s[7], s[0], s[1], s[2], sm[0], sm[1], sm[2]);
+    }
+    if (eval_of("Material \"plastic\" \"rgb Ks\" [0 0 0]", e)) near(e[3], d[3], "plastic Ks 0: pdf averages two lobes");
+    if (sample_of("Material \"plastic\" \"rgb Ks\" [0 0 0]", 0.7, s))
+        same_sample(s, sd, "plastic Ks 0: uc 0.7 picks the black coat");
+    if (eval_of("Material \"plastic\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0 0 0]", e)) {
+        near(e[3], d[3], "plastic Kd 0 Ks 0: both lobes kept");
+        near(e[0], 0, "plastic Kd 0 Ks 0: f 0");
+    }
+
+    if (!eval_of("Material \"substrate\"", d) || !sample_of("Material \"substrate\"", 0.3, sd)) return;
+    if (eval_of("Material \"substrate\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0 0 0]", e))
+        near(e[3], d[3], "substrate Kd 0 Ks 0: FresnelBlend kept");
+    if (sample_of("Material \"substrate\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0 0 0]", 0.3, s))
+        same_sample(s, sd, "substrate Kd 0 Ks 0: FresnelBlend sample");
+}
+
+/* uber: each of its lobes only when its scale (times opacity) is not black. */
+static void uber(void)
+{
+    double p[4], e[4], s[8];
+    const double lam = COS_WI / MT_PI;
+    if (!eval_of("Material \"plastic\"", p)) return;
+    /* plastic's two lobes have uber's default pdfs (Lambertian, Blinn 10) */
+    if (eval_of("Material \"uber\"", e)) near(e[3], p[3], "uber default: Lambertian and Blinn");
+    if (eval_of("Material \"uber\" \"rgb Kd\" [0 0 0]", e)) near(e[3], 2 * p[3] - lam, "uber Kd 0: Blinn alone");
+    if (sample_of("Material \"uber\" \"rgb Kd\" [0 0 0]", 0.3, s)) flags_are(s, 9, s[6], "uber Kd 0: uc 0.3 glossy");
+    if (eval_of("Material \"uber\" \"rgb Ks\" [0 0 0]", e)) near(e[3], lam, "uber Ks 0: Lambertian alone");
+    if (sample_of("Material \"uber\" \"rgb Ks\" [0 0 0]", 0.7, s)) flags_are(s, 5, s[2] / MT_PI, "uber Ks 0: uc 0.7 diffuse, pdf cos/pi");
+    if (eval_of("Material \"uber\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0 0 0]", e)) near(e[3], 0, "uber Kd 0 Ks 0: no lobe");
+    if (sample_of("Material \"uber\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0 0 0]", 0.5, s)) failed(s, "uber Kd 0 Ks 0");
+    if (eval_of("Material \"uber\" \"rgb Kr\" [0.5 0.5 0.5]", e)) near(e[3], p[3] * 2 / 3, "uber Kr: a third lobe");
+    if (eval_of("Material \"uber\" \"rgb opacity\" [0.5 0.5 0.5]", e))
+        near(e[3], p[3] * 2 / 3, "uber opacity 0.5: transmission lobe added");
+    if (sample_of("Material \"uber\" \"rgb opacity\" [0 0 0]", 0.3, s)) {
+        flags_are(s, 18, 1, "uber opacity 0: transmission alone");
+        near(s[2], -0.8, "uber opacity 0: straight through");
+    }
+    /* a texture black at some points: the lobe is there or not point by point */
+    if (ask("Texture \"half\" \"color\" \"checkerboard\" \"float uscale\" [2] \"rgb tex1\" [0 0 0] \"rgb tex2\" [0.5 0.5 0.5]", NULL, 0) &&
+        ask("at uv 0.25 0.25", NULL, 0) && eval_of("Material \"uber\" \"texture Kd\" \"half\"", e))
+        near(e[3], 2 * p[3] - lam, "uber textured Kd black here: Blinn alone");
+    if (ask("at uv 0.75 0.25", NULL, 0) && ask(EVAL, e, 4)) near(e[3], p[3], "uber textured Kd grey here: two lobes");
+    if (eval_of("Material \"plastic\" \"texture Kd\" \"half\"", e) && ask("at uv 0.25 0.25", NULL, 0) && ask(EVAL, e, 4))
+        near(e[3], p[3], "plastic textured Kd black here: two lobes");
+    ask("at uv 0.5 0.5", NULL, 0);
+}
+
+static void specular(void)
+{
+    double e[4], s[8];
+    if (sample_of("Material \"glass\" \"rgb Kr\" [0 0 0]", 0.3, s)) flags_are(s, 18, 1, "glass Kr 0: transmission alone");
+    if (sample_of("Material \"glass\" \"rgb Kt\" [0 0 0]", 0.7, s)) flags_are(s, 17, 1, "glass Kt 0: reflection alone");
+    if (sample_of("Material \"glass\" \"rgb Kr\" [0 0 0] \"rgb Kt\" [0 0 0]", 0.5, s)) failed(s, "glass Kr 0 Kt 0");
+    if (sample_of("Material \"glass\"", 0.3, s)) flags_are(s, 17, 0.5, "glass: two lobes");
+    if (sample_of("Material \"mirror\" \"rgb Kr\" [0 0 0]", 0.5, s)) failed(s, "mirror Kr 0");
+    if (sample_of("Material \"subsurface\" \"rgb Kr\" [0 0 0]", 0.5, s)) failed(s, "subsurface Kr 0");
+    if (sample_of("Material \"kdsubsurface\" \"rgb Kr\" [0 0 0]", 0.5, s)) failed(s, "kdsubsurface Kr 0");
+    if (sample_of("Material \"metal\" \"float roughness\" [0]", 0.5, s))
+        flags_are(s, 9, s[6], "metal roughness 0: its lobe kept (Blinn exponent capped)");
+    if (eval_of("Material \"metal\" \"rgb eta\" [0 0 0] \"rgb k\" [0 0 0]", e))
+        near(e[3] > 0, 1, "metal eta 0 k 0: its lobe kept");
+}
+
+/* translucent: each lobe only when its two scales are not black; no index. */
+static void translucent(void)
+{
+    double d[4], e[4], s[8];
+    if (sample_of("Material \"translucent\" \"rgb reflect\" [0 0 0]", 0.3, s))
+        flags_are(s, 6, s[6], "translucent reflect 0: uc 0.3 the diffuse transmission");
+    if (sample_of("Material \"translucent\" \"rgb Kd\" [0 0 0]", 0.3, s))
+        flags_are(s, 9, s[6], "translucent Kd 0: uc 0.3 the glossy reflection");
+    if (sample_of("Material \"translucent\" \"rgb Kd\" [0 0 0]", 0.7, s))
+        flags_are(s, 10, s[6], "translucent Kd 0: uc 0.7 the glossy transmission");
+    if (sample_of("Material \"translucent\" \"rgb reflect\" [0 0 0] \"rgb transmit\" [0 0 0]", 0.5, s))
+        failed(s, "translucent reflect 0 transmit 0");
+    if (sample_of("Material \"translucent\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0 0 0]", 0.5, s))
+        failed(s, "translucent Kd 0 Ks 0");
+    /* pbrt-v2's translucent reads no "index": its index is always 1.5 */
+    if (eval_of("Material \"translucent\"", d) && eval_of("Material \"translucent\" \"float index\" [3]", e))
+        near(e[0], d[0], "translucent index ignored");
+}
+
+/* mix: every component of both, scaled, even by 0. */
+static void mix(void)
+{
+    double s[8];
+    if (!ask("MakeNamedMaterial \"a\" \"string type\" [\"matte\"]", NULL, 0) ||
+        !ask("MakeNamedMaterial \"b\" \"string type\" [\"plastic\"] \"rgb Kd\" [0 0 0]", NULL, 0))
+        return;
+    if (sample_of("Material \"mix\" \"string namedmaterial1\" \"a\" \"string namedmaterial2\" \"b\" \"rgb amount\" [0 0 0]",
+                  0.2, s)) {
+        char name[160];
+        name_of(name, sizeof name, "mix amount 0: the first material's lobe kept, scaled by 0");
+        t_check((int)s[7] == 5, name, "flags %g", s[7]);
+    }
+    if (sample_of("Material \"mix\" \"string namedmaterial1\" \"a\" \"string namedmaterial2\" \"b\" \"rgb amount\" [0 0 0]",
+                  0.5, s)) {
+        char name[160];
+        name_of(name, sizeof name, "mix amount 0: the black Lambertian of plastic Kd 0 kept");
+        t_check((int)s[7] == 5, name, "flags %g", s[7]);
+    }
+}
+
+int main(void)
+{
+    static const char *modes[] = {"pbrt-v2", "corrected"};
+    int m;
+    for (m = 0; m < 2; m++) {
+        mt_error err;
+        char line[32];
+        q = mt_query_create(NULL, &err);
+        if (!q) {
+            t_fail("lobes: session", "%s", err.message);
+            break;
+        }
+        mode_name = modes[m];
+        snprintf(line, sizeof line, "mode %s", mode_name);
+        if (ask(line, NULL, 0)) {
+            always_added();
+            plastic_substrate();
+            uber();
+            specular();
+            translucent();
+            mix();
+        }
+        mt_query_destroy(q);
+    }
+    return t_status();
+}
