@@ -457,11 +457,16 @@ static void test_fbm(void)
     /* the clamp to maxOctaves, and a footprint so large no octave is whole */
     foct = mt__noise_octaves(mt_v3((mt_real)1e-9, 0, 0), zero, 6, &whole);
     t_check(foct == 6 && whole == 6, "fbm: octaves clamped to maxOctaves", "%g", foct);
-    foct = mt__noise_octaves(mt_v3(16, 0, 0), zero, 6, &whole);
-    t_check(fabs(foct + 5) < 1e-5 && whole == -5 &&
-                mt_is_finite(mt__turbulence(p, mt_v3(16, 0, 0), zero, omega, 6)),
-            "fbm: a wide footprint gives negative octave counts (pbrt-v2's formula)", "%g",
-            foct);
+    /* a footprint of 0.7: -1 - log2(0.49)/2 = -0.49, clamped to 0 octaves:
+     * FBm exactly 0 and Turbulence 0.2 maxOctaves, as pbrt-v2's binary
+     * renders them (unclamped, half an octave of noise would fade in) */
+    foct = mt__noise_octaves(mt_v3((mt_real)0.7, 0, 0), zero, 6, &whole);
+    t_check(foct == 0 && whole == 0, "fbm: a wide footprint gives 0 octaves, not -0.49", "%g", foct);
+    got = mt__fbm(p, mt_v3((mt_real)0.7, 0, 0), zero, omega, 6);
+    t_check(got == 0, "fbm: exactly 0 for a footprint of 0.7", "%g", (double)got);
+    got = mt__turbulence(p, zero, mt_v3(16, 0, 0), omega, 6);
+    t_check(got == (mt_real)6 * (mt_real)0.2, "turbulence: 0.2 maxOctaves for a footprint of 16", "%.9g",
+            (double)got);
     /* an overflowing footprint (pbrt-v2: -inf octaves, Turbulence +inf) */
     got = mt__turbulence(p, mt_v3((mt_real)1e30, (mt_real)1e30, 0), zero, omega, 8);
     t_check(mt_is_finite(got), "turbulence: finite for a footprint whose square overflows",

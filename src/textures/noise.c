@@ -112,22 +112,25 @@ static mt_real smooth_step(mt_real lo, mt_real hi, mt_real value)
 /* pbrt-v2 pbrt.h Log2: logf(x) times the float 1 / logf(2). */
 static mt_real log2_pbrt(mt_real x) { return mt_log(x) * ((mt_real)1 / mt_log((mt_real)2)); }
 
-/* The octave count: min(maxOctaves, -1 - log2(s2) / 2), s2 the larger
- * squared footprint vector. The pbrt-v2 sources in the project's search
- * index (commits before the reference's e6f6334f) read 1 - log2(s2)/2, but
- * every one of the 432 reference values of fbm, wrinkled, windy and marble
- * agrees with -1 (two octaves fewer; pbrt-v3's formula) and none with +1:
- * the reference build is pbrt-v2 here. */
+/* The octave count: -1 - log2(s2) / 2 clamped to [0, maxOctaves], s2 the
+ * larger squared footprint vector. The pbrt-v2 sources in the project's
+ * search index (commits before the reference's e6f6334f) read 1 - log2(s2)/2
+ * without a lower bound, but every one of the 432 reference values of fbm,
+ * wrinkled, windy and marble agrees with -1 (pbrt-v3's formula) and none with
+ * +1, and the reference binary clamps at 0 as pbrt-v3 does: a footprint of
+ * 0.7 gives FBm exactly 0 and Turbulence exactly 0.2 maxOctaves (renders of
+ * an fbm and a wrinkled plane, docs/TEXTURES.md), where the unclamped count
+ * (-0.49: a partial octave of 0.51) faded in a noise octave. */
 mt_real mt__noise_octaves(mt_vec3 dpdx, mt_vec3 dpdy, int max_octaves, int *whole)
 {
     mt_real a = mt_v3_len2(dpdx), b = mt_v3_len2(dpdy);
     mt_real s2 = a < b ? b : a; /* std::max */
     mt_real f = -1 - (mt_real)0.5 * log2_pbrt(s2), foct;
-    /* A footprint whose squared length overflowed would give -inf octaves
-     * (and Turbulence +inf); its limit at the largest finite length is kept. */
-    if (!(s2 <= MT_REAL_MAX)) f = -1 - (mt_real)0.5 * log2_pbrt(MT_REAL_MAX);
-    foct = f < (mt_real)max_octaves ? f : (mt_real)max_octaves; /* std::min */
-    *whole = (int)mt_floor(foct); /* foct is in [-513, 128]: the conversion is exact */
+    /* An overflowing (or NaN) footprint is as wide as can be: no octave. */
+    if (!(s2 <= MT_REAL_MAX)) f = 0;
+    /* pbrt's Clamp(f, 0, maxOctaves): the lower bound tested first */
+    foct = f < 0 ? 0 : (f > (mt_real)max_octaves ? (mt_real)max_octaves : f);
+    *whole = (int)mt_floor(foct); /* foct is in [0, 128] (or a negative maxOctaves): exact */
     return foct;
 }
 
