@@ -14,6 +14,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "core/alloc.h"
 #include "image/imageio.h"
 #include "image/openexr.h"
 #include "materia/image.h"
@@ -258,6 +259,13 @@ static void test_exr_round_trips(void)
     exr_round_trip("exr: tiled, data window at (100, -33)", 29, 31, 4, EXR_PIXEL_HALF,
                    EXR_COMPRESSION_PIZ, 8, 100, -33);
     exr_round_trip("exr: 1 x 1", 1, 1, 3, EXR_PIXEL_FLOAT, EXR_COMPRESSION_ZIP, 0, 0, 0);
+    /* B44 is lossy; float channels it stores as they are, and a tile whose
+     * blocks would take more room than its pixels is stored raw (every edge
+     * tile here) */
+    exr_round_trip("exr: tiled float RGB, B44, 5 x 5 in 4 x 4 tiles", 5, 5, 3, EXR_PIXEL_FLOAT,
+                   EXR_COMPRESSION_B44, 4, 0, 0);
+    exr_round_trip("exr: tiled float RGBA, B44A, 13 x 13 in 4 x 4 tiles", 13, 13, 4,
+                   EXR_PIXEL_FLOAT, EXR_COMPRESSION_B44A, 4, 0, 0);
 }
 
 /* The header as OpenEXR itself reads it: ZIP, float channels, attributes. */
@@ -631,6 +639,71 @@ static void test_pfm(void)
     unlink(path);
 }
 
+/* ---- hostile files (fuzz/corpus) ------------------------------------------ */
+
+/* Reading path fails, naming the file and containing want, without asking
+ * the allocator for more than a megabyte at once. */
+static void hostile(const char *path, const char *want)
+{
+    mt_image img;
+    mt_error err;
+    char name[160];
+    size_t largest;
+    mt_status st;
+    mt_error_clear(&err);
+    mt__alloc_largest(1);
+    st = mt_image_read(path, &img, &err);
+    largest = mt__alloc_largest(1);
+    if (st == MT_OK) mt_image_free(&img);
+    snprintf(name, sizeof name, "hostile: %s is rejected (\"%s\") with no allocation over 1 MiB",
+             path, want);
+    t_check(st != MT_OK && names_file(&err, path) && strstr(err.message, want) && largest < (1u << 20),
+            name, "status %d, largest request %zu bytes: %s", (int)st, largest, err.message);
+}
+
+/* The value of pixel (x, y) channel c of fuzz/corpus/exr/b44-tiled-9x7.exr:
+ * constant over each 4 x 4 block of the two full tile columns (B44 keeps a
+ * constant block exactly), any values in the one-pixel-wide last column
+ * (its tiles are stored raw: B44 would need 14 bytes a channel for them). */
+static float b44_value(int x, int y, int c)
+{
+    if (x < 8) return (float)(1 + x / 4 + 3 * (y / 4) + 2 * c) * 0.25f;
+    return (float)(x * 7 + y * 3 + c) * 0.125f;
+}
+
+static void test_hostile(void)
+{
+    static const char *const text[] = {"tEXt", "zTXt", "iTXt", "sPLT"};
+    char path[128];
+    mt_image img;
+    mt_error err;
+    int k, x, y, c, bad = 0;
+    /* 45 bytes: IHDR, then a text or sPLT chunk declaring 0x7ffffff0 bytes;
+     * libpng used to allocate and zero them before finding the file short */
+    for (k = 0; k < 4; k++) {
+        snprintf(path, sizeof path, "fuzz/corpus/png/text-2gb-%s.png", text[k]);
+        hostile(path, "truncated");
+    }
+    /* a 1 x 7 half RGBA file whose data window says 16,252,937 x 7: 5.2 GB
+     * to read, refused before the image is allocated */
+    hostile("fuzz/corpus/exr/window-16252937x7.exr", "more than materia's limit of 2048 MiB");
+    hostile("fuzz/corpus/pfm/header-8000x8000-no-data.pfm", "truncated");
+    /* B44, 9 x 7 half RGB in 4 x 4 tiles, as OpenEXR writes it: the edge
+     * tiles stored raw (packed size = unpacked size), which OpenEXRCore 3.1
+     * hands to its B44 decoder and fails on */
+    mt_error_clear(&err);
+    if (t_check(mt_image_read("fuzz/corpus/exr/b44-tiled-9x7.exr", &img, &err) == MT_OK,
+                "exr: B44 tiles 1 pixel wide (stored raw) read", "%s", err.message)) {
+        for (y = 0; y < 7; y++)
+            for (x = 0; x < 9; x++)
+                for (c = 0; c < 3; c++) bad += img.data[(y * 9 + x) * 3 + c] != b44_value(x, y, c);
+        t_check(img.width == 9 && img.height == 7 && img.channels == 3 && bad == 0,
+                "exr: B44 9 x 7 in 4 x 4 tiles: every value exact", "%d x %d x %d, %d wrong",
+                img.width, img.height, img.channels, bad);
+        mt_image_free(&img);
+    }
+}
+
 /* ---- corrupt and truncated files ---------------------------------------- */
 
 static int read_fails_cleanly(const char *path)
@@ -880,6 +953,7 @@ int main(void)
     test_png_round_trips();
     test_pfm();
     test_corrupt();
+    test_hostile();
     test_write_failures();
     t_tmpdir_remove();
     return t_status();

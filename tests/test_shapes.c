@@ -1402,6 +1402,11 @@ static void test_errors(void)
                  "Shape \"loopsubdiv\" \"integer nlevels\" 20 \"integer indices\" [0 1 2] "
                  "\"point P\" [0 0 0 1 0 0 0 1 0]",
                  MT_ERR_LIMIT, "nlevels", 1, "more than");
+    /* 4^12 triangles: past the limit before anything is allocated */
+    expect_error("error: loopsubdiv past the limit of 4194304 triangles",
+                 "Shape \"loopsubdiv\" \"integer nlevels\" 12 \"integer indices\" [0 1 2] "
+                 "\"point P\" [0 0 0 1 0 0 0 1 0]",
+                 MT_ERR_LIMIT, "nlevels", 1, "more than 4194304 triangles (materia's limit");
     {
         mt_error err;
         int nwarn = -1;

@@ -176,6 +176,11 @@ static const mt_bxdf_ops halfangle_ops = {"RegularHalfangleBRDF", halfangle_f,
                                           mt_bxdf_default_sample_f, mt_bxdf_default_pdf,
                                           mt_bxdf_default_rho_hd, mt_bxdf_default_rho_hh};
 
+int mt__bxdf_is_measured(const mt_bxdf *b)
+{
+    return b->ops == &irreg_ops || b->ops == &halfangle_ops;
+}
+
 static mt_bxdf *create(mt_arena *a, mt_mode mode, const mt_measured *data, mt_measured_kind kind,
                        const mt_bxdf_ops *ops, mt_error *err)
 {

@@ -43,6 +43,7 @@
 typedef struct exr_stream {
     int fd;
     int64_t size;
+    exr_result_t code; /* the code msg came with */
     char msg[256];
 } exr_stream;
 
@@ -65,8 +66,10 @@ static void on_error(exr_const_context_t ctxt, exr_result_t code, const char *ms
 {
     exr_stream *s = stream_key_ok ? pthread_getspecific(stream_key) : NULL;
     (void)ctxt;
-    (void)code;
-    if (s && !s->msg[0] && msg) snprintf(s->msg, sizeof s->msg, "%s", msg);
+    if (s && !s->msg[0] && msg) {
+        snprintf(s->msg, sizeof s->msg, "%s", msg);
+        s->code = code;
+    }
 }
 
 /* pread (rbuf) or pwrite (wbuf) until sz bytes have moved, or the end of
@@ -124,7 +127,16 @@ static exr_context_initializer_t initializer(exr_stream *s)
     return init;
 }
 
-/* The error for a failed library call: its own message when it gave one. */
+/* Forgets the messages of calls that did not fail (a warning about a header
+ * attribute must not stand for a later failure). */
+static void exr_forget(exr_stream *s)
+{
+    s->msg[0] = '\0';
+    s->code = EXR_ERR_SUCCESS;
+}
+
+/* The error for a failed library call: its own message when it gave one
+ * with the code the call returned (else the code's standard message). */
 static mt_status exr_fail(mt_error *err, const char *path, const exr_stream *s, exr_result_t rv,
                           const char *what)
 {
@@ -134,7 +146,7 @@ static mt_status exr_fail(mt_error *err, const char *path, const exr_stream *s, 
                        ? MT_ERR_IO
                        : MT_ERR_FORMAT;
     return mt_error_set(err, st, "%s: %s: %s", path, what,
-                        s->msg[0] ? s->msg : exr_get_default_error_message(rv));
+                        s->msg[0] && s->code == rv ? s->msg : exr_get_default_error_message(rv));
 }
 
 /* A channel's buffer: its stored type (no conversion by the library),
@@ -158,16 +170,21 @@ typedef struct exr_reader {
     exr_context_t ctx;
     exr_stream stream;
     exr_attr_box2i_t dw;
-    int width, height;
+    int width, height, channels;
     int present[NSLOTS];
     int type[NSLOTS];       /* the stored pixel type of each present slot */
     int dest[NSLOTS];       /* the image channel it fills, -1 for none */
     int gray;               /* Y fills R, G and B */
     int decoded;            /* how many slots are read (0: the image stays black) */
     int chunk_w, chunk_h;   /* the largest chunk */
-    uint8_t *planes;        /* NSLOTS planes of chunk_w * chunk_h 4-byte values */
+    uint8_t *planes;        /* a plane of chunk_w * chunk_h stored values per decoded slot */
+    size_t plane_at[NSLOTS]; /* where each decoded slot's plane starts */
+    size_t planes_bytes;
+    uint64_t chunk_bytes;   /* an unpacked chunk of every channel of the file, at most */
+    exr_compression_t comp;
     exr_decode_pipeline_t dec;
     int dec_ready;
+    exr_result_t (*decompress)(exr_decode_pipeline_t *); /* the library's own */
 } exr_reader;
 
 static float stored_to_float(const uint8_t *p, int type)
@@ -234,12 +251,31 @@ static mt_status plan_channels(exr_reader *r, int *channels, mt_error *err)
     return MT_OK;
 }
 
+/* The library's B44 decompressor, with a chunk stored raw read as raw.
+ * OpenEXR's writers store a chunk raw when compressing it would not make it
+ * smaller, and its C++ readers take any chunk whose stored size equals its
+ * unpacked size for raw. OpenEXRCore 3.1's decoder does so for every
+ * compression but B44 and B44A (decoding.c, decompress_data), and hands
+ * such a chunk to the B44 decoder, which fails ("Unable to decompress image
+ * data 24 -> 24"): a half-float B44 file whose edge tiles are 1 to 3 pixels
+ * wide or high -- 9 x 7 pixels in 4 x 4 tiles -- has such chunks, as B44
+ * spends 14 bytes on every 4 x 4 block, however few of its pixels are in
+ * the image. The library has already pointed the unpacked buffer at the
+ * packed one when the sizes are equal. */
+static exr_result_t b44_or_raw(exr_decode_pipeline_t *dec)
+{
+    exr_reader *r = dec->decoding_user_data;
+    if (dec->chunk.packed_size != dec->chunk.unpacked_size) return r->decompress(dec);
+    if (dec->unpacked_buffer != dec->packed_buffer)
+        memcpy(dec->unpacked_buffer, dec->packed_buffer, dec->chunk.unpacked_size);
+    return EXR_ERR_SUCCESS;
+}
+
 /* Decodes one chunk whose top-left pixel is (x, y) relative to the data
  * window, and stores it in img. */
 static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, int y,
                               mt_image *img, mt_error *err)
 {
-    size_t plane = (size_t)r->chunk_w * (size_t)r->chunk_h * 4;
     exr_result_t rv;
     int c, k, i, j;
     if (ci->width < 1 || ci->height < 1 || ci->width > r->chunk_w || ci->height > r->chunk_h ||
@@ -247,7 +283,15 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
         return mt_error_set(err, MT_ERR_FORMAT,
                             "%s: corrupt chunk (%d x %d pixels at %d, %d in a %d x %d image)",
                             r->path, ci->width, ci->height, x, y, r->width, r->height);
+    /* the library allocates the packed size before reading the chunk */
+    if (ci->packed_size > (uint64_t)r->stream.size || ci->unpacked_size > r->chunk_bytes)
+        return mt_error_set(err, MT_ERR_FORMAT,
+                            "%s: corrupt chunk (%llu bytes unpacked to %llu, in a file of %lld "
+                            "bytes)",
+                            r->path, (unsigned long long)ci->packed_size,
+                            (unsigned long long)ci->unpacked_size, (long long)r->stream.size);
     if (!r->decoded) return MT_OK; /* pbrt-v2 mode, no R, G, B or A: black */
+    exr_forget(&r->stream);
     rv = r->dec_ready ? exr_decoding_update(r->ctx, 0, ci, &r->dec)
                       : exr_decoding_initialize(r->ctx, 0, ci, &r->dec);
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, r->path, &r->stream, rv, "cannot decode");
@@ -258,11 +302,17 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
         for (k = 0; k < NSLOTS; k++) {
             if (r->dest[k] < 0) continue;
             if (!ch->channel_name || strcmp(ch->channel_name, slot_names[k]) != 0) continue;
-            ch->decode_to_ptr = r->planes + (size_t)k * plane;
+            ch->decode_to_ptr = r->planes + r->plane_at[k];
             planar_native(ch);
         }
     }
     rv = exr_decoding_choose_default_routines(r->ctx, 0, &r->dec);
+    if (rv == EXR_ERR_SUCCESS && r->dec.decompress_fn &&
+        (r->comp == EXR_COMPRESSION_B44 || r->comp == EXR_COMPRESSION_B44A)) {
+        r->decompress = r->dec.decompress_fn;
+        r->dec.decoding_user_data = r;
+        r->dec.decompress_fn = b44_or_raw;
+    }
     if (rv == EXR_ERR_SUCCESS) rv = exr_decoding_run(r->ctx, 0, &r->dec);
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, r->path, &r->stream, rv, "cannot decode");
     for (k = 0; k < NSLOTS; k++) {
@@ -270,7 +320,7 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
         /* pbrt-v2's HALF frame buffer (erratum exr-half); alpha it never reads */
         int through_half = !(r->mode & MT_FIX_EXR_HALF) && k != SLOT_A &&
                            r->type[k] != EXR_PIXEL_HALF;
-        const uint8_t *src = r->planes + (size_t)k * plane;
+        const uint8_t *src = r->planes + r->plane_at[k];
         if (!r->present[k] || d < 0) continue;
         for (j = 0; j < ci->height; j++) {
             float *dst = img->data + ((size_t)(y + j) * (size_t)r->width + (size_t)x) *
@@ -290,20 +340,56 @@ static mt_status decode_chunk(exr_reader *r, const exr_chunk_info_t *ci, int x, 
     return MT_OK;
 }
 
+/* Checks what reading will allocate -- the image, a plane per decoded slot
+ * and the library's buffers for one chunk (packed, unpacked and scratch,
+ * each at most an unpacked chunk of every channel of the file) -- against
+ * MT__IMAGE_MAX_BYTES, then allocates the image and the planes. */
+static mt_status allocate(exr_reader *r, mt_image *img, mt_error *err)
+{
+    const exr_attr_chlist_t *chl = NULL;
+    uint64_t px = (uint64_t)r->chunk_w * (uint64_t)r->chunk_h, file_bpp = 0;
+    double need;
+    mt_status st;
+    int i, k;
+    if (exr_get_channels(r->ctx, 0, &chl) != EXR_ERR_SUCCESS || !chl)
+        return mt_error_set(err, MT_ERR_FORMAT, "%s: no channel list", r->path);
+    for (i = 0; i < chl->num_channels; i++)
+        file_bpp += chl->entries[i].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+    r->chunk_bytes = px * file_bpp;
+    r->planes_bytes = 0;
+    for (k = 0; k < NSLOTS; k++) {
+        r->plane_at[k] = r->planes_bytes;
+        if (r->dest[k] >= 0) r->planes_bytes += (size_t)px * (r->type[k] == EXR_PIXEL_HALF ? 2 : 4);
+    }
+    need = (double)r->width * (double)r->height * (double)r->channels * sizeof(float) +
+           (double)r->planes_bytes + 3.0 * (double)r->chunk_bytes;
+    if (need > (double)MT__IMAGE_MAX_BYTES)
+        return mt_error_set(err, MT_ERR_FORMAT,
+                            "%s: a %d x %d image of %d channels needs %.0f MiB to read, more "
+                            "than materia's limit of %.0f MiB",
+                            r->path, r->width, r->height, chl->num_channels, need / (1 << 20),
+                            (double)MT__IMAGE_MAX_BYTES / (1 << 20));
+    st = mt_image_alloc(img, r->width, r->height, r->channels, err);
+    if (st != MT_OK) return st;
+    r->planes = mt__malloc(r->planes_bytes ? r->planes_bytes : 1);
+    if (!r->planes) return mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", r->path);
+    return MT_OK;
+}
+
 static mt_status read_scanlines(exr_reader *r, mt_image *img, mt_error *err)
 {
     int32_t lpc = 0;
     int64_t y;
+    mt_status st;
     exr_result_t rv = exr_get_scanlines_per_chunk(r->ctx, 0, &lpc);
     if (rv != EXR_ERR_SUCCESS || lpc < 1)
         return exr_fail(err, r->path, &r->stream, rv ? rv : EXR_ERR_UNKNOWN, "bad scanline layout");
     r->chunk_w = r->width;
     r->chunk_h = lpc < r->height ? lpc : r->height;
-    r->planes = mt__malloc((size_t)NSLOTS * (size_t)r->chunk_w * (size_t)r->chunk_h * 4);
-    if (!r->planes) return mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", r->path);
+    st = allocate(r, img, err);
+    if (st != MT_OK) return st;
     for (y = r->dw.min.y; y <= r->dw.max.y; y += lpc) {
         exr_chunk_info_t ci;
-        mt_status st;
         rv = exr_read_scanline_chunk_info(r->ctx, 0, (int)y, &ci);
         if (rv != EXR_ERR_SUCCESS)
             return exr_fail(err, r->path, &r->stream, rv, "cannot read scanlines");
@@ -317,19 +403,19 @@ static mt_status read_tiles(exr_reader *r, mt_image *img, mt_error *err)
 {
     int32_t tw = 0, th = 0;
     int tx, ty, ntx, nty;
+    mt_status st;
     exr_result_t rv = exr_get_tile_sizes(r->ctx, 0, 0, 0, &tw, &th);
     if (rv != EXR_ERR_SUCCESS || tw < 1 || th < 1)
         return exr_fail(err, r->path, &r->stream, rv ? rv : EXR_ERR_UNKNOWN, "bad tile layout");
     r->chunk_w = tw < r->width ? tw : r->width;
     r->chunk_h = th < r->height ? th : r->height;
-    r->planes = mt__malloc((size_t)NSLOTS * (size_t)r->chunk_w * (size_t)r->chunk_h * 4);
-    if (!r->planes) return mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", r->path);
+    st = allocate(r, img, err);
+    if (st != MT_OK) return st;
     ntx = (int)(((int64_t)r->width + tw - 1) / tw);
     nty = (int)(((int64_t)r->height + th - 1) / th);
     for (ty = 0; ty < nty; ty++) {
         for (tx = 0; tx < ntx; tx++) {
             exr_chunk_info_t ci;
-            mt_status st;
             rv = exr_read_tile_chunk_info(r->ctx, 0, tx, ty, 0, 0, &ci);
             if (rv != EXR_ERR_SUCCESS)
                 return exr_fail(err, r->path, &r->stream, rv, "cannot read tiles");
@@ -352,10 +438,12 @@ static mt_status read_image(exr_reader *r, mt_image *img, mt_error *err)
     init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
     rv = exr_start_read(&r->ctx, r->path, &init);
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, r->path, &r->stream, rv, "not a valid OpenEXR file");
+    exr_forget(&r->stream);
     rv = exr_get_count(r->ctx, &count);
     if (rv == EXR_ERR_SUCCESS && count < 1) rv = EXR_ERR_FILE_BAD_HEADER;
     if (rv == EXR_ERR_SUCCESS) rv = exr_get_storage(r->ctx, 0, &storage);
     if (rv == EXR_ERR_SUCCESS) rv = exr_get_data_window(r->ctx, 0, &r->dw);
+    if (rv == EXR_ERR_SUCCESS) rv = exr_get_compression(r->ctx, 0, &r->comp);
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, r->path, &r->stream, rv, "bad header");
     if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
         return mt_error_set(err, MT_ERR_UNSUPPORTED, "%s: deep images are not supported",
@@ -367,8 +455,8 @@ static mt_status read_image(exr_reader *r, mt_image *img, mt_error *err)
     r->height = r->dw.max.y - r->dw.min.y + 1;
     st = find_channels(r, err);
     if (st == MT_OK) st = plan_channels(r, &channels, err);
-    if (st == MT_OK) st = mt_image_alloc(img, r->width, r->height, channels, err);
     if (st != MT_OK) return st;
+    r->channels = channels; /* the image is allocated with the decode buffers */
     return storage == EXR_STORAGE_TILED ? read_tiles(r, img, err) : read_scanlines(r, img, err);
 }
 

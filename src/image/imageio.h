@@ -12,9 +12,12 @@
 #include "materia/image.h"
 
 /* Largest side and largest number of values (width * height * channels) an
- * image may have: a corrupt header cannot make the reader allocate more. */
+ * image may have, and the most memory a reader may ask for to read one (the
+ * image and its decode buffers together, checked before any of them is
+ * allocated): a corrupt header cannot make the reader allocate more. */
 #define MT__IMAGE_MAX_SIDE (1 << 24)
 #define MT__IMAGE_MAX_VALUES ((size_t)1 << 29)
+#define MT__IMAGE_MAX_BYTES ((size_t)1 << 31)
 
 /* The readers. mode: the MT_IMAGE_MODE_BITS of mt_image_read_mode (PNG has
  * none: pbrt-v2 reads no PNG). */

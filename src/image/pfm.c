@@ -68,15 +68,9 @@ static mt_status read_pixels(FILE *f, const char *path, long header_len, long lo
                              float scale, int bottom_up, mt_image *img, mt_error *err)
 {
     size_t rowbytes = (size_t)img->width * (size_t)img->channels * 4, i;
-    unsigned long long need = (unsigned long long)rowbytes * (unsigned long long)img->height;
     int little = scale < 0, y;
     float mag = fabsf(scale);
     unsigned char *row;
-    if ((unsigned long long)(file_size - header_len) < need)
-        return mt_error_set(err, MT_ERR_FORMAT,
-                            "%s: truncated: %d x %d pixels need %llu bytes of data, the file "
-                            "has %lld",
-                            path, img->width, img->height, need, file_size - header_len);
     if (fseek(f, header_len, SEEK_SET) != 0)
         return mt_error_set(err, MT_ERR_IO, "%s: cannot seek: %s", path, strerror(errno));
     row = mt__malloc(rowbytes);
@@ -139,6 +133,15 @@ mt_status mt__pfm_read(const char *path, mt_mode mode, mt_image *img, mt_error *
     }
     pos++;
     st = mt__image_check_size(path, w, h, channels, err);
+    /* the data the header promises must be in the file before the image is
+     * allocated */
+    if (st == MT_OK && (unsigned long long)(file_size - (long long)pos) <
+                           (unsigned long long)w * (unsigned long long)h * (unsigned)channels * 4)
+        st = mt_error_set(err, MT_ERR_FORMAT,
+                          "%s: truncated: %lld x %lld pixels need %llu bytes of data, the file "
+                          "has %lld",
+                          path, w, h, (unsigned long long)w * (unsigned long long)h * (unsigned)channels * 4,
+                          file_size - (long long)pos);
     if (st == MT_OK) st = mt_image_alloc(img, (int)w, (int)h, channels, err);
     if (st == MT_OK)
         st = read_pixels(f, path, (long)pos, file_size, scale, (mode & MT_FIX_PFM_ROWS) != 0,

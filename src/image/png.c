@@ -12,6 +12,15 @@
  * the caller's frame, so nothing is indeterminate after the jump (C99
  * 7.13.2.1); the caller frees what the state holds. Warnings are dropped:
  * the library never prints.
+ *
+ * Only IHDR, PLTE, tRNS, IDAT and IEND are read; libpng skips every other
+ * chunk without storing it. Left to itself it allocates a text or sPLT
+ * chunk's declared length before reading it (a 45-byte file declaring a
+ * 2 GB tEXt chunk made it allocate and zero 2 GB), and its chunk limits
+ * (png_set_chunk_malloc_max) only warn unless benign errors are errors.
+ * The sides are limited to MT__IMAGE_MAX_SIDE by libpng itself, and the
+ * image with its decode buffer to MT__IMAGE_MAX_BYTES before either is
+ * allocated.
  */
 #include <errno.h>
 #include <png.h>
@@ -36,7 +45,11 @@ typedef struct png_state {
 static void on_error(png_structp png, png_const_charp msg)
 {
     png_state *s = png_get_error_ptr(png);
-    snprintf(s->msg, sizeof s->msg, "%s", msg ? msg : "libpng error");
+    /* libpng's stdio reader says "Read Error" for a short read */
+    if (msg && strcmp(msg, "Read Error") == 0)
+        snprintf(s->msg, sizeof s->msg, "truncated or unreadable file (libpng: %s)", msg);
+    else
+        snprintf(s->msg, sizeof s->msg, "%s", msg ? msg : "libpng error");
     png_longjmp(png, 1);
 }
 
@@ -98,6 +111,10 @@ static int read_inner(png_state *s)
     size_t rowbytes;
     if (setjmp(png_jmpbuf(s->png))) return 0;
     png_init_io(s->png, s->f);
+    /* a negative count: every chunk but the five critical to the pixels */
+    png_set_keep_unknown_chunks(s->png, PNG_HANDLE_CHUNK_NEVER, NULL, -1);
+    png_set_user_limits(s->png, MT__IMAGE_MAX_SIDE, MT__IMAGE_MAX_SIDE);
+    png_set_chunk_malloc_max(s->png, 1 << 20);
     png_read_info(s->png, s->info);
     png_get_IHDR(s->png, s->info, &w, &h, &depth, &color, NULL, NULL, NULL);
     if (color == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(s->png);
@@ -116,8 +133,21 @@ static int read_inner(png_state *s)
         return 0;
     }
     s->status = mt__image_check_size(s->path, (long long)w, (long long)h, 4, NULL);
-    if (s->status == MT_OK)
-        s->status = mt_image_alloc(s->img, (int)w, (int)h, pngch == 2 ? 4 : pngch, NULL);
+    if (s->status == MT_OK) {
+        int channels = pngch == 2 ? 4 : pngch;
+        double need = (double)w * (double)h * channels * sizeof(float) +
+                      (double)rowbytes * h + (double)sizeof *s->rows * h;
+        if (need > (double)MT__IMAGE_MAX_BYTES) {
+            s->status = MT_ERR_FORMAT;
+            snprintf(s->msg, sizeof s->msg,
+                     "a %lu x %lu image needs %.0f MiB to read, more than materia's limit of "
+                     "%.0f MiB",
+                     (unsigned long)w, (unsigned long)h, need / (1 << 20),
+                     (double)MT__IMAGE_MAX_BYTES / (1 << 20));
+            return 0;
+        }
+        s->status = mt_image_alloc(s->img, (int)w, (int)h, channels, NULL);
+    }
     if (s->status == MT_OK) {
         s->pixels = mt__malloc(rowbytes * h);
         s->rows = mt__malloc(sizeof *s->rows * h);

@@ -26,6 +26,11 @@ struct mt_measured {
 #define MT__IRREG_FIRST_D2 ((mt_real)0.001)
 #define MT__IRREG_WIDE_D2 (8 * MT__IRREG_FIRST_D2)
 
+/* Whether b is one of the measured BxDFs (bxdfs/measured.c), whose f is a
+ * lookup in tabulated data: discontinuous wherever a table bin or the
+ * irregular search's set of samples changes (mt_bxdf_rho_quad). */
+int mt__bxdf_is_measured(const mt_bxdf *b);
+
 /* Irregular data owning points (3 n remapped coordinates) and values (n),
  * both from mt__malloc: they are freed here on failure too. */
 mt_measured *mt__measured_irregular(mt_real *points, mt_rgb *values, int n, mt_error *err);

@@ -435,6 +435,13 @@ static mt_status build_limit(mt_shape *s, sd_mesh *m, mt_error *err)
     return st;
 }
 
+/* The most triangles a subdivision may make, 4,194,304: under half a
+ * gigabyte of vertex and face records while refining (pbrt-v2's scenes
+ * subdivide a few thousand triangles 3 times),
+ * checked before anything is allocated so that a parameter cannot make the
+ * loader ask for more. */
+#define MAX_TRIANGLES (1 << 22)
+
 mt_status mt__loopsubdiv_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
 {
     const int *vi;
@@ -465,11 +472,12 @@ mt_status mt__loopsubdiv_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
     }
     for (faces = nvi / 3, level = 0; level < nlevels; ++level) {
         faces *= 4;
-        if (faces > INT_MAX / 3) {
+        if (faces > MAX_TRIANGLES) {
             mt__locate_param(err, ps, "nlevels");
             return mt_error_param(err, MT_ERR_LIMIT, "nlevels",
-                                  "%d levels of %d triangles make more than %d triangles",
-                                  nlevels, nvi / 3, INT_MAX / 3);
+                                  "%d levels of %d triangles make more than %d triangles "
+                                  "(materia's limit for a subdivision surface)",
+                                  nlevels, nvi / 3, MAX_TRIANGLES);
         }
     }
     memset(&m, 0, sizeof m);
