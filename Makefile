@@ -4,7 +4,10 @@
 #   make check                 every unit test and the conformance suite
 #   make PRECISION=double      the same with mt_real = double, in build/double
 #   make SANITIZE=address,undefined check
-#   make bench                 benchmarks (float and double, ratios from one run)
+#   make bench                 benchmarks (float and double, ratios from one run),
+#                              then materia and pbrt-v2 side by side (bench-pbrt)
+#   make bench-pbrt BENCH_SPP=16 BENCH_REPEAT=1 BENCH_GROUPS=material
+#                              only the side-by-side timing, a quick run
 #   make demo                  a contact sheet of every material: demo.png
 #   make golden                render the golden images again
 #   make install PREFIX=/usr/local DESTDIR=
@@ -125,7 +128,7 @@ SONAME     := libmateria.so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench demo golden install clean distclean help
+.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench bench-pbrt demo golden install clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -210,11 +213,23 @@ check-full: all tests
 	$(CONF_BIN) --full
 
 # Every benchmark program in bench/, float and double builds alternating in
-# one run, with the double/float ratio of each figure.
+# one run, with the double/float ratio of each figure; then the default
+# build's materia-render and pbrt-v2 timed side by side on the reference
+# scenes (tools/bench-pbrt.sh; skipped, saying so, without the baseline).
+# BENCH_SPP (default: each scene's own), BENCH_REPEAT (3), BENCH_THREADS (2)
+# and BENCH_GROUPS (material subsurface real) shorten or select it.
+BENCH_GROUPS ?=
 bench:
 	$(MAKE) PRECISION=float SANITIZE= all benches
 	$(MAKE) PRECISION=double SANITIZE= all benches
 	sh tools/run-bench.sh build/float/bench build/double/bench
+	BENCH_SPP=$(BENCH_SPP) BENCH_REPEAT=$(BENCH_REPEAT) BENCH_THREADS=$(BENCH_THREADS) \
+	    sh tools/bench-pbrt.sh build/float $(BENCH_GROUPS)
+
+bench-pbrt:
+	$(MAKE) PRECISION=float SANITIZE= BUILD=build/float all
+	BENCH_SPP=$(BENCH_SPP) BENCH_REPEAT=$(BENCH_REPEAT) BENCH_THREADS=$(BENCH_THREADS) \
+	    sh tools/bench-pbrt.sh build/float $(BENCH_GROUPS)
 
 # A contact sheet of every material (golden/scenes) in demo.png.
 demo: all
@@ -245,7 +260,7 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,14p' Makefile
+	@sed -n '2,17p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \

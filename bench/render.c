@@ -5,24 +5,20 @@
  *   render_<scene>_1t      camera samples per second on one thread (CPU time
  *                          of the rendering thread's process)
  *   render_<scene>_2t      camera samples per second on two threads (wall
- *                          clock), as pbrt-v2's times were taken
- *   render_<scene>_vs_pbrt the projected time of the whole scene at its own
- *                          1024 samples per pixel on two threads -- load time +
- *                          the two-thread render's CPU time per sample / 2 x
- *                          samples, i.e. the wall time of two fully busy
- *                          threads -- divided by pbrt-v2's wall time on two
- *                          threads in pbrt-v2/times.txt (target: <= 0.5).
- *                          CPU time keeps the figure meaningful on a shared
- *                          machine, where wall time depends on the load.
+ *                          clock)
+ *   render_<scene>_cpu     CPU seconds per million camera samples on two
+ *                          threads (steadier than wall time on a shared
+ *                          machine)
  *
  * Renders use MATERIA_BENCH_SPP samples per pixel (default 32; the time per
- * sample does not depend on the count, and 1024 reproduces the full scene).
+ * sample does not depend on the count). This compares builds (float and
+ * double in make bench), not renderers: the comparison with pbrt-v2 is timed
+ * side by side, both whole processes, by tools/bench-pbrt.sh.
  * Without the shared reference data the benchmark says so and exits.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 #include <time.h>
 #include "support/check.h"
 #include "support/trender.h"
@@ -35,26 +31,6 @@ static double now(clockid_t c)
     struct timespec t;
     clock_gettime(c, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* pbrt-v2's wall time for a scene from times.txt, 0 when absent. */
-static double pbrt_time(const char *shared, const char *scene)
-{
-    char path[1024], name[64];
-    double t, found = 0;
-    FILE *f;
-    snprintf(path, sizeof path, "%s/reference/pbrt-v2/times.txt", shared);
-    if (!(f = fopen(path, "r"))) return 0;
-    while (fscanf(f, "%63s", name) == 1) {
-        if (name[0] == '#') {
-            int c;
-            while ((c = fgetc(f)) != EOF && c != '\n') {}
-            continue;
-        }
-        if (fscanf(f, "%lf", &t) == 1 && strcmp(name, scene) == 0) found = t;
-    }
-    fclose(f);
-    return found;
 }
 
 /* Renders s; *wall and *cpu receive the render's wall time and the
@@ -91,7 +67,7 @@ int main(void)
         mt_render_options o;
         mt_error err;
         mt_scene *s;
-        double t0, load, wall, cpu, n, full, pbrt;
+        double t0, load, wall, cpu, n;
         snprintf(path, sizeof path, "%s/reference/scenes/%s.pbrt", shared, scenes[i]);
         mt_render_options_default(&o);
         t0 = now(CLOCK_MONOTONIC);
@@ -109,14 +85,10 @@ int main(void)
         if ((n = run(s, spp, 2, &wall, &cpu)) > 0) {
             snprintf(name, sizeof name, "render_%s_2t", scenes[i]);
             printf("BENCH %s %.4g samples/s\n", name, n / wall);
-            full = load + cpu / 2 / spp * mt_scene_spp(s);
-            pbrt = pbrt_time(shared, scenes[i]);
-            if (pbrt > 0) {
-                snprintf(name, sizeof name, "render_%s_vs_pbrt", scenes[i]);
-                printf("BENCH %s %.3f ratio\n", name, full / pbrt);
-                printf("%-12s %.1f s at %d spp on 2 busy threads (wall now %.1f s), pbrt-v2 %.1f s\n",
-                       scenes[i], full, mt_scene_spp(s), load + wall / spp * mt_scene_spp(s), pbrt);
-            }
+            snprintf(name, sizeof name, "render_%s_cpu", scenes[i]);
+            printf("BENCH %s %.4g s/Msamples\n", name, cpu / n * 1e6);
+            printf("%-12s loaded in %.3f s; %d spp on 2 threads: %.2f s wall, %.2f s CPU\n", scenes[i], load,
+                   spp, wall, cpu);
         }
         mt_scene_destroy(s);
     }
