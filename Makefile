@@ -134,7 +134,7 @@ FLAGS_STAMP := $(BUILD)/flags
 all: lib tools $(CONF_BIN)
 lib: $(STATIC_LIB) $(SHARED_LIB)
 tools: $(TOOLS)
-tests: $(TESTS) $(CONF_BIN)
+tests: $(TESTS) $(CXX_TEST) $(CONF_BIN)
 benches: $(BENCHES)
 
 $(CONFIG_H): Makefile $(FLAGS_STAMP)
@@ -191,6 +191,26 @@ $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(LTO_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
 
+# A C++ program against the public headers and libmateria.a (make check):
+# the headers' extern "C" guards and C++-clean inline functions. Built with
+# CXX (clang++ when CC is clang), skipped with a message when it is absent.
+ifeq ($(origin CXX),default)
+  ifneq ($(findstring clang,$(CC)),)
+    CXX := clang++
+  endif
+endif
+ifneq ($(NEED_DEPS),)
+  CXX_OK := $(shell command -v $(CXX) >/dev/null 2>&1 && echo yes)
+endif
+CXX_TEST := $(if $(CXX_OK),$(BUILD)/tests/test_cxx)
+CXX_SKIP := $(if $(CXX_OK),,no C++ compiler ($(CXX)) found: the C++ program was not built)
+MT_CXXFLAGS := -std=c++11 -Wall -Wextra -pedantic $(filter -Werror,$(CFLAGS)) -MMD -MP \
+               $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-omit-frame-pointer)
+$(BUILD)/tests/test_cxx: tests/cxx/test_cxx.cpp $(STATIC_LIB) $(CONFIG_H)
+	@mkdir -p $(dir $@)
+	$(CXX) $(MT_CXXFLAGS) $(CXXFLAGS) -Iinclude -I$(BUILD)/include $(CPPFLAGS) $(NO_LTO) \
+	    $(ALL_LDFLAGS) -o $@ $< $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
 # Every test binary, then the conformance suite; one summary line at the end.
 # The suite compares this build with the other precision's (float versus
 # double ULPs); under the sanitizers it runs with fewer samples (--lite): the
@@ -203,7 +223,7 @@ OTHER_CONF      := $(OTHER_BUILD)/bin/materia-conformance
 CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
 
 check: all tests $(if $(SANITIZE),,other-conformance)
-	@CONF_ARGS="$(CONF_ARGS)" sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS)
+	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST)
 
 other-conformance:
 	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= BUILD=$(OTHER_BUILD) $(OTHER_CONF)
@@ -249,6 +269,8 @@ install: all
 	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
 	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(PREFIX)/lib/libmateria.so
 	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin/
+	install -d $(DESTDIR)$(PREFIX)/share/doc/materia
+	install -m 644 LICENSE $(DESTDIR)$(PREFIX)/share/doc/materia/
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
 	    -e 's|@PRIVATE_LIBS@|$(DEP_LIBS) -lpthread -lm|g' materia.pc.in \
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/materia.pc

@@ -47,9 +47,17 @@
 #include "materia/sheet.h"
 #include "materia/render.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The version of the library ("0.1.0") and its precision ("float"/"double"):
  * a program built against one precision's headers must link that build. */
 MT_API const char *mt_version(void);
 MT_API const char *mt_precision(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

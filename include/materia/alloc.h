@@ -13,11 +13,19 @@
 #include <stddef.h>
 #include "materia/real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Allocations (malloc, calloc, realloc) made by the library so far. */
 MT_API unsigned long mt_alloc_count(void);
 
 /* Makes the allocation after n more succeed fail (n = 0: the next one), or
  * disables injection when n < 0. */
 MT_API void mt_alloc_fail_after(long n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

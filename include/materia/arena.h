@@ -13,6 +13,10 @@
 #include <stddef.h>
 #include "materia/real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_arena mt_arena;
 
 /* A new arena whose blocks hold block_size bytes (0: pbrt-v2's 32768).
@@ -29,5 +33,9 @@ MT_API void mt_arena_reset(mt_arena *a);
 /* Statistics: blocks obtained from malloc so far, and bytes they hold. */
 MT_API size_t mt_arena_blocks(const mt_arena *a);
 MT_API size_t mt_arena_bytes(const mt_arena *a);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -19,6 +19,10 @@
 #include "materia/frame.h"
 #include "materia/rng.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define MT_MAX_BXDFS 8
 
 typedef struct mt_bsdf mt_bsdf;
@@ -63,5 +67,9 @@ MT_API mt_real mt_bsdf_pdf(const mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, unsigned fl
 MT_API mt_rgb mt_bsdf_rho_hd(const mt_bsdf *b, mt_vec3 wo, mt_rng *rng, unsigned flags,
                              int sqrt_samples);
 MT_API mt_rgb mt_bsdf_rho_hh(const mt_bsdf *b, mt_rng *rng, unsigned flags, int sqrt_samples);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -12,10 +12,18 @@
 
 #include "materia/texture.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Options for studies of the method; materials use 0. */
 #define MT_BUMP_DROP_DNDU 1u /* omit the d * dndu terms (what many renderers do) */
 
 MT_API void mt_bump(const mt_texture *d, const mt_diffgeom *dg_geom, const mt_diffgeom *dg_shading,
                     mt_diffgeom *dg_bump, unsigned options);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -19,6 +19,10 @@
 #include "materia/rgb.h"
 #include "materia/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* pbrt-v2 BxDFType bits. */
 enum {
     MT_BSDF_REFLECTION = 1 << 0,
@@ -183,5 +187,9 @@ MT_API mt_rgb mt_bxdf_default_rho_hd(const mt_bxdf *b, mt_vec3 wo, int n,
                                      const mt_real *samples);
 MT_API mt_rgb mt_bxdf_default_rho_hh(const mt_bxdf *b, int n, const mt_real *s1,
                                      const mt_real *s2);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -16,6 +16,10 @@
 
 #include "materia/bsdf.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define MT_CUBATURE_MAX_COMPONENTS 8
 
 typedef void (*mt_cubature_fn)(void *ctx, double x, double y, double *out);
@@ -55,5 +59,9 @@ MT_API mt_rgb mt_bxdf_rho_quad(const mt_bxdf *b, mt_vec3 wo, double rel_tol);
  * estimand computed exactly. In pbrt-v2 mode wo reaches the BxDFs in world
  * coordinates, as in pbrt-v2 (erratum rho-world-space). */
 MT_API mt_rgb mt_bsdf_rho_quad(const mt_bsdf *b, mt_vec3 wo, unsigned flags, double rel_tol);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -11,6 +11,10 @@
 
 #include "materia/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_diffgeom {
     mt_vec3 p;
     mt_vec3 n;
@@ -27,5 +31,9 @@ typedef struct mt_diffgeom {
 /* The standard shading point of the query protocol: p = 0, n = +z,
  * dpdu = +x, dpdv = +y, (u, v) = (0.5, 0.5), everything else zero. */
 MT_API mt_diffgeom mt_diffgeom_default(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

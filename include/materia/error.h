@@ -12,6 +12,10 @@
 #include <stddef.h>
 #include "materia/real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum mt_status {
     MT_OK = 0,
     MT_ERR_INVALID,     /* an argument or parameter value is not acceptable */
@@ -61,5 +65,9 @@ MT_API void mt_error_locate(mt_error *err, const char *file, int line, int colum
 /* Formats "file:line:column: parameter "p": message" into buf (the parts that
  * are known) and returns buf. */
 MT_API const char *mt_error_format(const mt_error *err, char *buf, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

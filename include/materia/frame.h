@@ -9,6 +9,10 @@
 
 #include "materia/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_frame {
     mt_vec3 s, t, n;
 } mt_frame;
@@ -30,5 +34,9 @@ MT_API void mt_coordinate_system(mt_vec3 v1, mt_vec3 *v2, mt_vec3 *v3);
 
 /* A frame with the unit normal n as its z axis, built by mt_coordinate_system. */
 MT_API mt_frame mt_frame_from_normal(mt_vec3 n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

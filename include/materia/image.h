@@ -22,6 +22,10 @@
 #include "materia/error.h"
 #include "materia/mode.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_image {
     int width, height;
     int channels; /* 1 (Y), 3 (RGB) or 4 (RGBA) */
@@ -72,5 +76,9 @@ MT_API mt_status mt_image_write(const char *path, const mt_image *img, const mt_
 /* The sRGB transfer function and its inverse (IEC 61966-2-1). */
 MT_API float mt_srgb_to_linear(float v);
 MT_API float mt_linear_to_srgb(float v);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

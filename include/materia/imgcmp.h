@@ -37,6 +37,10 @@
 #include "materia/error.h"
 #include "materia/image.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* pbrt-v2's block metric with its default block size and offset. */
 #define MT_IMGCMP_BLOCK 4
 #define MT_IMGCMP_OFFSET 0.01
@@ -187,5 +191,9 @@ MT_API mt_status mt_imgacc_finish(const mt_imgacc *acc, mt_image *mean, mt_image
  * (mt_image_write makes the PNG sRGB). */
 MT_API mt_status mt_imgcmp_heatmap(const mt_image *blocks, int block, int width, int height,
                                    double vmax, int bar, mt_image *out, mt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

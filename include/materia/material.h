@@ -15,6 +15,10 @@
 #include "materia/bsdf.h"
 #include "materia/texture.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_material mt_material;
 
 /* pbrt-v2's BSSRDF: the reduced scattering and absorption coefficients (per
@@ -80,5 +84,9 @@ MT_API mt_material *mt_material_from_state(const struct mt_state *s, const mt_pa
 
 /* The names of the 13 material types; *count receives their number. */
 MT_API const char *const *mt_material_types(int *count);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -33,6 +33,10 @@
 #include "materia/bsdf.h"
 #include "materia/params.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_measured mt_measured;
 
 typedef enum mt_measured_kind {
@@ -152,5 +156,9 @@ typedef struct mt_merl_options {
 /* opt may be NULL (all defaults). */
 MT_API mt_status mt_merl_write_statements(const char *statements, const mt_merl_options *opt,
                                           const char *path, mt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

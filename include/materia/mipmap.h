@@ -29,6 +29,10 @@
 #include "materia/mode.h"
 #include "materia/rgb.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum mt_wrap { MT_WRAP_REPEAT, MT_WRAP_BLACK, MT_WRAP_CLAMP } mt_wrap;
 
 typedef struct mt_mipmap mt_mipmap;
@@ -82,5 +86,9 @@ MT_API int mt_mipmap_cache_size(void);
 /* Destroys every cached pyramid (teardown, tests): no texture may use one
  * afterwards. */
 MT_API void mt_mipmap_cache_clear(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -16,6 +16,10 @@
 
 #include "materia/real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef unsigned mt_mode;
 
 /* BxDF and BSDF layer */
@@ -85,5 +89,9 @@ MT_API const char *mt_mode_name(mt_mode mode);
 
 /* Parses "pbrt-v2" or "corrected"; returns 0 on success, -1 otherwise. */
 MT_API int mt_mode_parse(const char *name, mt_mode *mode);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

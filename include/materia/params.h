@@ -28,6 +28,10 @@
 #include "materia/rgb.h"
 #include "materia/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum mt_param_type {
     MT_PARAM_FLOAT,
     MT_PARAM_INTEGER,
@@ -128,5 +132,9 @@ typedef void (*mt_warning_fn)(void *ctx, const char *file, int line, const char 
  * pbrt-v2's order (integers, bools, floats, points, vectors, normals,
  * spectra, strings, textures). */
 MT_API void mt_paramset_report_unused(const mt_paramset *ps, mt_warning_fn warn, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -20,6 +20,10 @@
 
 #include "materia/params.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A positional argument: a number or a string. */
 typedef struct mt_arg {
     int is_string;
@@ -68,5 +72,9 @@ MT_API int mt_parse_incomplete(const char *text);
 
 /* 1 when word is a directive of pbrt-v2's scene language. */
 MT_API int mt_is_directive(const char *word);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

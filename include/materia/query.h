@@ -22,6 +22,10 @@
 
 #include "materia/error.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_query mt_query;
 
 /* A session whose relative file names resolve against dir (NULL: "."). */
@@ -35,5 +39,9 @@ MT_API int mt_query_line(mt_query *q, const char *line, char *out, size_t size);
 
 /* At end of input: 1 and an error answer when a statement was left open. */
 MT_API int mt_query_finish(mt_query *q, char *out, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

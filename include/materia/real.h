@@ -14,6 +14,10 @@
 #include <string.h>
 #include "materia/config.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 #define MT_API __attribute__((visibility("default")))
 #else
@@ -110,5 +114,9 @@ static inline int mt_is_nan(mt_real v)
     return ((u >> 23) & 0xff) == 0xff && (u & 0x7fffff) != 0;
 #endif
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -34,6 +34,10 @@
 #include "materia/mode.h"
 #include "materia/params.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_scene mt_scene;
 
 /* Progress of a render: the fraction of tiles finished, the seconds since the
@@ -102,5 +106,9 @@ MT_API mt_status mt_render_write(const char *path, const mt_image *img, const mt
 /* mt_scene_load + mt_scene_render + mt_scene_destroy. */
 MT_API mt_status mt_render_file(const char *path, const mt_render_options *o, mt_image *image,
                                 mt_image *variance, mt_render_stats *stats, mt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

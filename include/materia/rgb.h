@@ -10,6 +10,10 @@
 
 #include "materia/real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_rgb {
     mt_real c[3];
 } mt_rgb;
@@ -83,5 +87,9 @@ static inline int mt_rgb_equal(mt_rgb a, mt_rgb b)
 {
     return a.c[0] == b.c[0] && a.c[1] == b.c[1] && a.c[2] == b.c[2];
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -12,6 +12,10 @@
 #include <stdint.h>
 #include "materia/real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_rng {
     uint64_t state, inc;
 } mt_rng;
@@ -26,5 +30,9 @@ MT_API mt_real mt_rng_uniform(mt_rng *r);
 MT_API double mt_rng_uniform_d(mt_rng *r);
 /* Uniform integer in [0, bound), without modulo bias. */
 MT_API uint32_t mt_rng_bounded(mt_rng *r, uint32_t bound);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -9,6 +9,10 @@
 #include "materia/vec.h"
 #include "materia/rng.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Shirley-Chiu concentric map of [0,1)^2 to the unit disk, with pbrt-v2's
  * region tests and its degenerate case (the center maps to the origin). */
 MT_API void mt_concentric_sample_disk(mt_real u1, mt_real u2, mt_real *dx, mt_real *dy);
@@ -54,5 +58,9 @@ MT_API void mt_stratified_row_2d(mt_real *samp, int nx, int ny, int y, mt_rng *r
 /* Multiple importance sampling weights (Veach). */
 MT_API mt_real mt_balance_heuristic(int nf, mt_real fpdf, int ng, mt_real gpdf);
 MT_API mt_real mt_power_heuristic(int nf, mt_real fpdf, int ng, mt_real gpdf);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

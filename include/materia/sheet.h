@@ -8,6 +8,10 @@
 #include "materia/error.h"
 #include "materia/image.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_sheet_entry {
     const char *label;        /* drawn under the image (NULL: none) */
     const mt_image *image;
@@ -33,5 +37,9 @@ MT_API mt_sheet_options mt_sheet_defaults(void);
  * [0, 1]: mt_image_write to a .png applies sRGB. opt NULL: the defaults. */
 MT_API mt_status mt_sheet_make(const mt_sheet_entry *entries, int n, const mt_sheet_options *opt,
                                mt_image *out, mt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -13,6 +13,10 @@
 #include "materia/error.h"
 #include "materia/rgb.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* pbrt-v2 RGBSpectrum::FromSampled: lambda in nm, in any order (pbrt-v2
  * sorts the (lambda, value) pairs). Black when n <= 0 or when a number is
  * not finite or beyond float's range. A repeated wavelength makes a step, as
@@ -31,5 +35,9 @@ MT_API mt_rgb mt_blackbody_rgb(double kelvin, double scale);
  * file and line. */
 MT_API mt_status mt_spd_read(const char *path, double **lambda, double **values, int *n,
                              mt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -35,6 +35,10 @@
 #include "materia/parser.h"
 #include "materia/texture.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_state mt_state;
 
 MT_API mt_state *mt_state_create(mt_mode mode);
@@ -89,5 +93,9 @@ MT_API void mt_state_material(const mt_state *s, mt_material_spec *out);
  * namedmaterial1/2); MT_ERR_NOT_FOUND when there is none in scope. */
 MT_API mt_status mt_state_named_material(const mt_state *s, const char *name,
                                          mt_material_spec *out, mt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

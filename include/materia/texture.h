@@ -23,6 +23,10 @@
 #include "materia/rgb.h"
 #include "materia/transform.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_texture mt_texture;
 typedef struct mt_texture_table mt_texture_table;
 
@@ -106,5 +110,9 @@ MT_API mt_texture *mt_texture_create(const char *class_name, int is_float,
 
 /* The class names, for help texts and tests; *count receives their number. */
 MT_API const char *const *mt_texture_classes(int *count);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

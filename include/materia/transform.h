@@ -13,6 +13,10 @@
 #include "materia/error.h"
 #include "materia/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_matrix4 {
     double m[4][4];
 } mt_matrix4;
@@ -47,5 +51,9 @@ MT_API mt_vec3 mt_transform_point(const mt_transform *t, mt_vec3 p);
 MT_API mt_vec3 mt_transform_vector(const mt_transform *t, mt_vec3 v);
 /* Normals transform by the inverse transpose. */
 MT_API mt_vec3 mt_transform_normal(const mt_transform *t, mt_vec3 n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include "materia/real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct mt_vec3 {
     mt_real x, y, z;
 } mt_vec3;
@@ -54,5 +58,9 @@ static inline int mt_v3_is_finite(mt_vec3 a)
     return mt_is_finite(a.x) && mt_is_finite(a.y) && mt_is_finite(a.z);
 }
 static inline int mt_v3_is_zero(mt_vec3 a) { return a.x == 0 && a.y == 0 && a.z == 0; }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
