@@ -82,6 +82,10 @@ struct mt_state;
 MT_API mt_material *mt_material_from_state(const struct mt_state *s, const mt_paramset *shape_params,
                                            mt_error *err);
 
+/* The material MakeNamedMaterial "name" defined (pbrt-v2 creates it at that
+ * statement: errors in its parameters show there). NULL with err filled. */
+MT_API mt_material *mt_material_named_from_state(const struct mt_state *s, const char *name, mt_error *err);
+
 /* The names of the 13 material types; *count receives their number. */
 MT_API const char *const *mt_material_types(int *count);
 

@@ -66,3 +66,18 @@ mt_material *mt_material_from_state(const mt_state *s, const mt_paramset *shape_
     for (i = 0; i < r.nmade; ++i) mt_material_release(r.made[i]);
     return m;
 }
+
+mt_material *mt_material_named_from_state(const mt_state *s, const char *name, mt_error *err)
+{
+    resolver r;
+    mt_material_spec spec;
+    mt_material *m;
+    int i;
+    if (mt_state_named_material(s, name, &spec, err) != MT_OK) return NULL;
+    memset(&r, 0, sizeof r);
+    r.state = s;
+    r.err = err;
+    m = from_spec(&r, &spec, NULL);
+    for (i = 0; i < r.nmade; ++i) mt_material_release(r.made[i]);
+    return m;
+}

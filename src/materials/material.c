@@ -15,9 +15,71 @@
     X(translucent) X(uber) X(mix) X(measured) X(subsurface) X(kdsubsurface)
 #define NAME(n) #n,
 #define CREATOR(n) mt__##n##_create,
+#define OPS(n) &mt__##n##_ops,
 static const char *const names[] = {MATERIALS(NAME)};
 static const mt_material_create_fn creators[] = {MATERIALS(CREATOR)};
+static const mt_material_ops *const all_ops[] = {MATERIALS(OPS)};
 #define NTYPES (int)(sizeof names / sizeof names[0])
+
+const mt_material_ops *mt__material_ops(const char *type)
+{
+    int i;
+    for (i = 0; i < NTYPES; ++i)
+        if (!strcmp(names[i], type)) return all_ops[i];
+    return NULL;
+}
+
+const char *mt__range_text(mt_range r)
+{
+    switch (r) {
+    case MT_RANGE_ANY: return "any";
+    case MT_RANGE_CLAMP0: return "any; below 0 taken as 0";
+    case MT_RANGE_SIGMA: return "any; clamped to [0, 90]";
+    case MT_RANGE_APPROX: return "any; clamped to [0, 0.999]";
+    case MT_RANGE_NONNEG: return ">= 0";
+    case MT_RANGE_POS: return "> 0";
+    }
+    return "?";
+}
+
+void mt__material_locate_param(const mt_texparams *tp, const char *name, mt_error *err)
+{
+    const mt_param *p = tp->geom ? mt_paramset_find(tp->geom, name) : NULL;
+    if (!p && tp->material) p = mt_paramset_find(tp->material, name);
+    if (p && p->file) mt_error_locate(err, p->file, p->line, p->column);
+}
+
+/* A constant value (a plain value, or a "texture" naming a constant texture)
+ * outside the slot's range: an error naming the parameter, at its line.
+ * pbrt-v2 would build BxDFs with a negative exponent or a zero index, which
+ * render black or NaN; a texture that varies is evaluated per point and a
+ * bad value there fails where the BSDF is built. */
+static mt_status check_range(const mt_tex_slot *sl, const mt_texture *t, const mt_texparams *tp,
+                             mt_error *err)
+{
+    mt_diffgeom dg = mt_diffgeom_default();
+    mt_rgb v;
+    int c, n = sl->is_float ? 1 : 3;
+    if ((sl->range != MT_RANGE_NONNEG && sl->range != MT_RANGE_POS) ||
+        strcmp(mt_texture_class(t), "constant") != 0)
+        return MT_OK;
+    v = mt_texture_eval_rgb(t, &dg);
+    for (c = 0; c < n; ++c) {
+        mt_real x = v.c[c];
+        /* -0 too: 1/-0 is an exponent of -infinity */
+        int ok = sl->range == MT_RANGE_POS ? x > 0 : (x > 0 || (x == 0 && !signbit(x)));
+        if (ok) continue;
+        if (n == 1)
+            mt_error_param(err, MT_ERR_INVALID, sl->name, "%s is %g%s; it must be %s", sl->name, (double)x,
+                           x == 0 && signbit(x) ? " (its inverse is -infinity)" : "", mt__range_text(sl->range));
+        else
+            mt_error_param(err, MT_ERR_INVALID, sl->name, "%s is [%g %g %g]; each component must be %s",
+                           sl->name, (double)v.c[0], (double)v.c[1], (double)v.c[2], mt__range_text(sl->range));
+        mt__material_locate_param(tp, sl->name, err);
+        return MT_ERR_INVALID;
+    }
+    return MT_OK;
+}
 
 const char *const *mt_material_types(int *count)
 {
@@ -38,11 +100,20 @@ mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,
     return NULL;
 }
 
-void *mt__material_new(size_t size, const mt_material_ops *ops, const mt_tex_slot *slots, int nslots,
-                       const mt_texparams *tp, mt_error *err)
+void *mt__material_new(size_t size, const mt_material_ops *ops, const mt_texparams *tp, mt_error *err)
+{
+    mt_tex_slot slots[MT_MATERIAL_SLOTS];
+    if (!ops->defaults) return mt__material_new_with(size, ops, ops->slots, tp, err);
+    memcpy(slots, ops->slots, (size_t)ops->nslots * sizeof *slots);
+    ops->defaults(slots);
+    return mt__material_new_with(size, ops, slots, tp, err);
+}
+
+void *mt__material_new_with(size_t size, const mt_material_ops *ops, const mt_tex_slot *slots,
+                            const mt_texparams *tp, mt_error *err)
 {
     mt_material *m = mt__calloc(1, size);
-    int i;
+    int i, nslots = ops->nslots;
     if (!m) {
         mt_error_set(err, MT_ERR_NOMEM, "out of memory creating a %s material", ops->type);
         return NULL;
@@ -55,7 +126,7 @@ void *mt__material_new(size_t size, const mt_material_ops *ops, const mt_tex_slo
         m->tex[i] = sl->is_float
                         ? mt_texparams_float_texture(tp, sl->name, sl->def[0], err)
                         : mt_texparams_spectrum_texture(tp, sl->name, mt_rgb_make(sl->def[0], sl->def[1], sl->def[2]), err);
-        if (!m->tex[i]) break;
+        if (!m->tex[i] || check_range(sl, m->tex[i], tp, err) != MT_OK) break;
     }
     /* a type with its own get_bsdf (the mix) has no "bumpmap" in pbrt-v2 */
     if (i < nslots || (!ops->get_bsdf && mt_texparams_float_texture_opt(tp, "bumpmap", &m->bump, err) != MT_OK)) {

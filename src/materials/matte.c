@@ -3,7 +3,9 @@
 #include "materials/material_impl.h"
 
 enum { KD, SIGMA };
-static const mt_tex_slot slots[] = {{"Kd", 0, {0.5f, 0.5f, 0.5f}}, {"sigma", 1, {0}}};
+static const mt_tex_slot slots[] = {
+    {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
+    {"sigma", 1, {0}, MT_RANGE_SIGMA, "Oren-Nayar roughness: the standard deviation of the facet angle, in degrees"}};
 
 static int matte_max(const mt_material *m) { return 1; }
 
@@ -15,9 +17,9 @@ static mt_status matte_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return mt_bsdf_add(b, mt_orennayar_create(a, m->mode, r, sig, err), err);
 }
 
-static const mt_material_ops ops = {"matte", matte_max, matte_add, NULL, NULL, NULL, NULL};
+const mt_material_ops mt__matte_ops = {"matte", matte_max, matte_add, NULL, NULL, NULL, NULL, slots, 2, NULL, NULL, 0};
 
 mt_material *mt__matte_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &ops, slots, 2, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__matte_ops, tp, err);
 }

@@ -25,8 +25,12 @@ static mt_status measured_add(const mt_material *m, mt_bsdf *b, const mt_diffgeo
 
 static void measured_destroy(mt_material *m) { mt_measured_release(((measured_material *)m)->data); }
 
-static const mt_material_ops ops = {"measured", measured_max, measured_add, NULL, NULL,
-                                    measured_destroy, NULL};
+static const mt_param_doc other[] = {
+    {"filename", "string", "(required)", "a readable file",
+     "a .brdf file (irregular isotropic samples) or a MERL binary table (any other suffix)"}};
+
+const mt_material_ops mt__measured_ops = {"measured", measured_max, measured_add, NULL, NULL,
+                                          measured_destroy, NULL, NULL, 0, NULL, other, 1};
 
 mt_material *mt__measured_create(const mt_transform *xf, const mt_texparams *tp,
                                  const mt_material_ctx *ctx, mt_error *err)
@@ -39,7 +43,7 @@ mt_material *mt__measured_create(const mt_transform *xf, const mt_texparams *tp,
                        "measured material: \"string filename\" is required");
         return NULL;
     }
-    m = mt__material_new(sizeof *m, &ops, NULL, 0, tp, err);
+    m = mt__material_new(sizeof *m, &mt__measured_ops, tp, err);
     if (!m) return NULL;
     m->data = mt_measured_load(path, err);
     if (!m->data) {

@@ -46,16 +46,26 @@ static mt_status metal_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
                        err);
 }
 
-static const mt_material_ops ops = {"metal", metal_max, metal_add, NULL, NULL, NULL, NULL};
+/* eta and k default to copper's (metal_defaults) */
+static const mt_tex_slot slots[] = {
+    {"eta", 0, {0}, MT_RANGE_NONNEG, "real part of the conductor's index of refraction (default: copper)"},
+    {"k", 0, {0}, MT_RANGE_NONNEG, "absorption coefficient, the imaginary part (default: copper)"},
+    {"roughness", 1, {0.01f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"}};
+
+static void metal_defaults(mt_tex_slot *s)
+{
+    mt_rgb n = mt_spectrum_from_sampled(cu_lambda, cu_n, NCU), k = mt_spectrum_from_sampled(cu_lambda, cu_k, NCU);
+    int c;
+    for (c = 0; c < 3; ++c) {
+        s[ETA].def[c] = n.c[c];
+        s[K].def[c] = k.c[c];
+    }
+}
+
+const mt_material_ops mt__metal_ops = {"metal", metal_max, metal_add, NULL, NULL, NULL, NULL,
+                                       slots, 3, metal_defaults, NULL, 0};
 
 mt_material *mt__metal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    mt_rgb n = mt_spectrum_from_sampled(cu_lambda, cu_n, NCU), k = mt_spectrum_from_sampled(cu_lambda, cu_k, NCU);
-    mt_tex_slot slots[3] = {{"eta", 0, {0}}, {"k", 0, {0}}, {"roughness", 1, {0.01f}}};
-    int c;
-    for (c = 0; c < 3; ++c) {
-        slots[0].def[c] = n.c[c];
-        slots[1].def[c] = k.c[c];
-    }
-    return mt__material_new(sizeof(mt_material), &ops, slots, 3, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__metal_ops, tp, err);
 }

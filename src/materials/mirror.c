@@ -1,7 +1,7 @@
 /* mirror (pbrt-v2 mirror.cpp): specular reflection with no Fresnel term. */
 #include "materials/material_impl.h"
 
-static const mt_tex_slot slots[] = {{"Kr", 0, {0.9f, 0.9f, 0.9f}}};
+static const mt_tex_slot slots[] = {{"Kr", 0, {0.9f, 0.9f, 0.9f}, MT_RANGE_CLAMP0, "specular reflectance (no Fresnel term)"}};
 
 static int mirror_max(const mt_material *m) { return 1; }
 
@@ -12,9 +12,9 @@ static mt_status mirror_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom 
     return MT_OK;
 }
 
-static const mt_material_ops ops = {"mirror", mirror_max, mirror_add, NULL, NULL, NULL, NULL};
+const mt_material_ops mt__mirror_ops = {"mirror", mirror_max, mirror_add, NULL, NULL, NULL, NULL, slots, 1, NULL, NULL, 0};
 
 mt_material *mt__mirror_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &ops, slots, 1, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__mirror_ops, tp, err);
 }

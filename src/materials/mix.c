@@ -11,7 +11,12 @@
 #include "materials/material_impl.h"
 
 enum { AMOUNT };
-static const mt_tex_slot slots[] = {{"amount", 0, {0.5f, 0.5f, 0.5f}}};
+static const mt_tex_slot slots[] = {
+    {"amount", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0,
+     "weight of namedmaterial1; namedmaterial2 has 1 - amount, also taken as 0 below 0"}};
+static const mt_param_doc other[] = {
+    {"namedmaterial1", "string", "(required)", "a MakeNamedMaterial name", "the first material"},
+    {"namedmaterial2", "string", "(required)", "a MakeNamedMaterial name", "the second material"}};
 
 typedef struct mix {
     mt_material base;
@@ -56,7 +61,7 @@ static void mix_destroy(mt_material *m)
     mt_material_release(x->m2);
 }
 
-static const mt_material_ops ops = {"mix", mix_max, NULL, NULL, NULL, mix_destroy, mix_get_bsdf};
+const mt_material_ops mt__mix_ops = {"mix", mix_max, NULL, NULL, NULL, mix_destroy, mix_get_bsdf, slots, 1, NULL, other, 2};
 
 static mt_material *named(const mt_texparams *tp, const mt_material_ctx *ctx, const char *param, mt_error *err)
 {
@@ -77,7 +82,7 @@ static mt_material *named(const mt_texparams *tp, const mt_material_ctx *ctx, co
 
 mt_material *mt__mix_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    mix *x = mt__material_new(sizeof *x, &ops, slots, 1, tp, err);
+    mix *x = mt__material_new(sizeof *x, &mt__mix_ops, tp, err);
     if (!x) return NULL;
     if (!(x->m1 = named(tp, ctx, "namedmaterial1", err)) || !(x->m2 = named(tp, ctx, "namedmaterial2", err))) {
         mt_material_release(&x->base);

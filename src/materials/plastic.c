@@ -8,7 +8,9 @@
 
 enum { KD, KS, ROUGHNESS };
 static const mt_tex_slot slots[] = {
-    {"Kd", 0, {0.25f, 0.25f, 0.25f}}, {"Ks", 0, {0.25f, 0.25f, 0.25f}}, {"roughness", 1, {0.1f}}};
+    {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
+    {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
+    {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"}};
 
 static int plastic_max(const mt_material *m) { return 2; }
 
@@ -22,9 +24,9 @@ static mt_status plastic_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom
     return MT_OK;
 }
 
-static const mt_material_ops ops = {"plastic", plastic_max, plastic_add, NULL, NULL, NULL, NULL};
+const mt_material_ops mt__plastic_ops = {"plastic", plastic_max, plastic_add, NULL, NULL, NULL, NULL, slots, 3, NULL, NULL, 0};
 
 mt_material *mt__plastic_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &ops, slots, 3, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__plastic_ops, tp, err);
 }

@@ -9,7 +9,10 @@
 #include "materials/material_impl.h"
 
 enum { KS, ROUGHNESS, KR };
-static const mt_tex_slot slots[] = {{"Ks", 0, {1, 1, 1}}, {"roughness", 1, {0.1f}}, {"Kr", 0, {1, 1, 1}}};
+static const mt_tex_slot slots[] = {
+    {"Ks", 0, {1, 1, 1}, MT_RANGE_APPROX, "normal-incidence reflectance of the glossy lobe"},
+    {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"},
+    {"Kr", 0, {1, 1, 1}, MT_RANGE_APPROX, "normal-incidence reflectance of the specular lobe"}};
 
 static int shiny_max(const mt_material *m) { return 2; }
 
@@ -24,12 +27,12 @@ static mt_status shiny_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return MT_OK;
 }
 
-static const mt_material_ops ops = {"shinymetal", shiny_max, shiny_add, NULL, NULL, NULL, NULL};
+const mt_material_ops mt__shinymetal_ops = {"shinymetal", shiny_max, shiny_add, NULL, NULL, NULL, NULL, slots, 3, NULL, NULL, 0};
 
 mt_material *mt__shinymetal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
                                    mt_error *err)
 {
-    mt_material *m = mt__material_new(sizeof(mt_material), &ops, slots, 3, tp, err);
+    mt_material *m = mt__material_new(sizeof(mt_material), &mt__shinymetal_ops, tp, err);
     if (m && !m->bump && !(m->bump = mt_texture_constant_float(0, err))) {
         mt_material_release(m);
         return NULL;

@@ -4,8 +4,11 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, UROUGH, VROUGH };
-static const mt_tex_slot slots[] = {{"Kd", 0, {0.5f, 0.5f, 0.5f}}, {"Ks", 0, {0.5f, 0.5f, 0.5f}},
-                                    {"uroughness", 1, {0.1f}}, {"vroughness", 1, {0.1f}}};
+static const mt_tex_slot slots[] = {
+    {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance of the substrate"},
+    {"Ks", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "normal-incidence reflectance of the coat"},
+    {"uroughness", 1, {0.1f}, MT_RANGE_NONNEG, "the anisotropic exponent along dpdu is 1/uroughness"},
+    {"vroughness", 1, {0.1f}, MT_RANGE_NONNEG, "the anisotropic exponent along dpdv is 1/vroughness"}};
 
 static int substrate_max(const mt_material *m) { return 1; }
 
@@ -16,9 +19,9 @@ static mt_status substrate_add(const mt_material *m, mt_bsdf *b, const mt_diffge
     return mt_bsdf_add(b, mt_fresnelblend_create(a, m->mode, d, s, mt_anisotropic(1 / u, 1 / v), err), err);
 }
 
-static const mt_material_ops ops = {"substrate", substrate_max, substrate_add, NULL, NULL, NULL, NULL};
+const mt_material_ops mt__substrate_ops = {"substrate", substrate_max, substrate_add, NULL, NULL, NULL, NULL, slots, 4, NULL, NULL, 0};
 
 mt_material *mt__substrate_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &ops, slots, 4, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__substrate_ops, tp, err);
 }

@@ -6,6 +6,7 @@
  * kdsubsurface inverts a diffuse reflectance Kd and a mean free path.
  * pbrt-v2 evaluates the BSSRDF at the unbumped shading point.
  */
+#include <string.h>
 #include "materials/material_impl.h"
 #include "materials/media.h"
 
@@ -45,35 +46,60 @@ static int kd_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt_bssrdf *ou
     return 1;
 }
 
-static const mt_material_ops ss_ops = {"subsurface", ss_max, ss_add, NULL, ss_bssrdf, NULL, NULL};
-static const mt_material_ops kd_ops = {"kdsubsurface", ss_max, ss_add, NULL, kd_bssrdf, NULL, NULL};
+/* pbrt-v2's defaults for sigma_a and sigma_prime_s are whole milk's
+ * coefficients; a "name" replaces them with the named medium's */
+static const mt_tex_slot ss_slots[] = {
+    {"Kr", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular reflectance of the surface"},
+    {"index", 1, {1.3f}, MT_RANGE_POS, "index of refraction of the surface and the medium"},
+    {"sigma_a", 0, {0.0011f, 0.0024f, 0.014f}, MT_RANGE_NONNEG,
+     "absorption coefficient, per mm (default: whole milk's, or the named medium's)"},
+    {"sigma_prime_s", 0, {2.55f, 3.21f, 3.77f}, MT_RANGE_NONNEG,
+     "reduced scattering coefficient, per mm (default: whole milk's, or the named medium's)"}};
+static const mt_param_doc ss_other[] = {
+    {"name", "string", "\"\" (none)", "a medium of the table below",
+     "a measured medium whose coefficients become the defaults of sigma_a and sigma_prime_s"},
+    {"scale", "float", "1", "> 0", "factor on sigma_a and sigma_prime_s (scene units per mm)"}};
+static const mt_tex_slot kd_slots[] = {
+    {"Kr", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular reflectance of the surface"},
+    {"index", 1, {1.3f}, MT_RANGE_POS, "index of refraction of the surface and the medium"},
+    {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance the medium is made to have"},
+    {"meanfreepath", 1, {1}, MT_RANGE_POS, "mean free path in the medium"}};
+
+const mt_material_ops mt__subsurface_ops = {"subsurface", ss_max, ss_add, NULL, ss_bssrdf, NULL, NULL,
+                                            ss_slots, 4, NULL, ss_other, 2};
+const mt_material_ops mt__kdsubsurface_ops = {"kdsubsurface", ss_max, ss_add, NULL, kd_bssrdf, NULL, NULL,
+                                              kd_slots, 4, NULL, NULL, 0};
 
 mt_material *mt__subsurface_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
                                    mt_error *err)
 {
-    /* pbrt-v2's defaults are whole milk's coefficients */
-    mt_rgb sa = mt_rgb_make(0.0011f, 0.0024f, 0.014f), sps = mt_rgb_make(2.55f, 3.21f, 3.77f);
+    mt_rgb sa = mt_rgb_black(), sps = sa;
     const char *name = "";
     mt_real scale = 1;
-    mt_tex_slot slots[4] = {{"Kr", 0, {1, 1, 1}}, {"index", 1, {1.3f}}, {"sigma_a", 0, {0}}, {"sigma_prime_s", 0, {0}}};
+    mt_tex_slot slots[4];
     subsurface *x;
     int c;
+    memcpy(slots, ss_slots, sizeof slots);
     if (mt_texparams_string(tp, "name", "", &name, err) || mt_texparams_float(tp, "scale", 1, &scale, err))
         return NULL;
     if (name[0] && !mt__medium_lookup(name, &sa, &sps)) {
         /* pbrt-v2 warns and uses the defaults: a misspelt medium is an error here */
         mt_error_param(err, MT_ERR_NOT_FOUND, "name", "subsurface material: no measured medium named \"%s\"", name);
+        mt__material_locate_param(tp, "name", err);
         return NULL;
     }
-    if (!mt_is_finite(scale)) {
-        mt_error_param(err, MT_ERR_INVALID, "scale", "subsurface material: scale is not finite");
+    if (!(mt_is_finite(scale) && scale > 0)) {
+        /* no coefficients, or negative ones: the dipole divides by them */
+        mt_error_param(err, MT_ERR_INVALID, "scale", "subsurface material: scale is %g; it must be > 0",
+                       (double)scale);
+        mt__material_locate_param(tp, "scale", err);
         return NULL;
     }
-    for (c = 0; c < 3; ++c) {
+    for (c = 0; name[0] && c < 3; ++c) {
         slots[SIGMA_A].def[c] = sa.c[c];
         slots[SIGMA_PRIME_S].def[c] = sps.c[c];
     }
-    x = mt__material_new(sizeof *x, &ss_ops, slots, 4, tp, err);
+    x = mt__material_new_with(sizeof *x, &mt__subsurface_ops, slots, tp, err);
     if (x) x->scale = scale;
     return x ? &x->base : NULL;
 }
@@ -81,7 +107,5 @@ mt_material *mt__subsurface_create(const mt_transform *xf, const mt_texparams *t
 mt_material *mt__kdsubsurface_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
                                      mt_error *err)
 {
-    static const mt_tex_slot slots[4] = {
-        {"Kr", 0, {1, 1, 1}}, {"index", 1, {1.3f}}, {"Kd", 0, {0.5f, 0.5f, 0.5f}}, {"meanfreepath", 1, {1}}};
-    return mt__material_new(sizeof(mt_material), &kd_ops, slots, 4, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__kdsubsurface_ops, tp, err);
 }

@@ -9,9 +9,12 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, ROUGHNESS, REFLECT, TRANSMIT };
-static const mt_tex_slot slots[] = {{"Kd", 0, {0.25f, 0.25f, 0.25f}}, {"Ks", 0, {0.25f, 0.25f, 0.25f}},
-                                    {"roughness", 1, {0.1f}},         {"reflect", 0, {0.5f, 0.5f, 0.5f}},
-                                    {"transmit", 0, {0.5f, 0.5f, 0.5f}}};
+static const mt_tex_slot slots[] = {
+    {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
+    {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
+    {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"},
+    {"reflect", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "scale of the reflected lobes"},
+    {"transmit", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "scale of the transmitted lobes"}};
 
 static int translucent_max(const mt_material *m) { return 4; }
 
@@ -47,10 +50,10 @@ static mt_status translucent_add(const mt_material *m, mt_bsdf *b, const mt_diff
     return MT_OK;
 }
 
-static const mt_material_ops ops = {"translucent", translucent_max, translucent_add, translucent_eta, NULL, NULL, NULL};
+const mt_material_ops mt__translucent_ops = {"translucent", translucent_max, translucent_add, translucent_eta, NULL, NULL, NULL, slots, 5, NULL, NULL, 0};
 
 mt_material *mt__translucent_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
                                     mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &ops, slots, 5, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__translucent_ops, tp, err);
 }

@@ -11,8 +11,15 @@
 
 enum { KD, KS, KR, KT, ROUGHNESS, INDEX, OPACITY };
 static const mt_tex_slot slots[] = {
-    {"Kd", 0, {0.25f, 0.25f, 0.25f}}, {"Ks", 0, {0.25f, 0.25f, 0.25f}}, {"Kr", 0, {0}}, {"Kt", 0, {0}},
-    {"roughness", 1, {0.1f}},         {"index", 1, {1.5f}},             {"opacity", 0, {1, 1, 1}}};
+    {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
+    {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
+    {"Kr", 0, {0}, MT_RANGE_CLAMP0, "specular reflectance"},
+    {"Kt", 0, {0}, MT_RANGE_CLAMP0, "specular transmittance"},
+    {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"},
+    {"index", 1, {1.5f}, MT_RANGE_POS, "index of refraction of the glossy and specular lobes"},
+    {"opacity", 0, {1, 1, 1}, MT_RANGE_CLAMP0,
+     "weight of the lobes; 1 - opacity passes straight through (above 1: negative, erratum uber-opacity; "
+     "clamped to [0, 1] in corrected mode)"}};
 
 static int uber_max(const mt_material *m) { return 5; }
 
@@ -48,9 +55,9 @@ static mt_status uber_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *d
     return MT_OK;
 }
 
-static const mt_material_ops ops = {"uber", uber_max, uber_add, NULL, NULL, NULL, NULL};
+const mt_material_ops mt__uber_ops = {"uber", uber_max, uber_add, NULL, NULL, NULL, NULL, slots, 7, NULL, NULL, 0};
 
 mt_material *mt__uber_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &ops, slots, 7, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt__uber_ops, tp, err);
 }

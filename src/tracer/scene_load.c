@@ -291,7 +291,15 @@ static mt_status on_statement(void *ctx, const mt_statement *st, mt_error *err)
     if ((slot = option_slot(ld, d)) != NULL && (rc = check_option_type(st, err)) != MT_OK) return rc;
     if (strcmp(d, "Camera") == 0 && is_animated(ld->state))
         return mt_error_set(err, MT_ERR_UNSUPPORTED, "Camera: animated transforms are not supported");
-    if ((rc = mt_state_apply(ld->state, st, &handled, err)) != MT_OK || handled) return rc;
+    if ((rc = mt_state_apply(ld->state, st, &handled, err)) != MT_OK) return rc;
+    if (handled && strcmp(d, "MakeNamedMaterial") == 0) {
+        /* pbrt-v2 makes the material here: a wrong parameter fails at this
+         * line even when no shape uses the material */
+        mt_material *m = mt_material_named_from_state(ld->state, st->args[0].string, err);
+        if (!m) return err->status;
+        mt_material_release(m);
+    }
+    if (handled) return MT_OK;
     if (slot) {
         /* pbrt-v2 pbrtCamera: CameraToWorld = Inverse(curTransform) */
         if (slot == &ld->camera) ld->camera_to_world = mt_transform_inverse(mt_state_transform(ld->state));
