@@ -21,6 +21,7 @@
 #define MATERIA_QUERY_H
 
 #include "materia/error.h"
+#include "materia/params.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -36,6 +37,13 @@ MT_API void mt_query_destroy(mt_query *q);
  * out when the line completes a query, 0 when it was blank, a comment, or
  * the start of a statement that continues on the next line. */
 MT_API int mt_query_line(mt_query *q, const char *line, char *out, size_t size);
+
+/* Where the session's warnings go (NULL: nowhere): the parameters a
+ * Texture, Material or MakeNamedMaterial did not use (a misspelt name, a
+ * parameter of another type), redefinitions. They are not answers: the
+ * statement is still answered "ok". materia-query writes them to standard
+ * error as "warning FILE:LINE: MESSAGE". */
+MT_API void mt_query_set_warning(mt_query *q, mt_warning_fn warn, void *ctx);
 
 /* At end of input: 1 and an error answer when a statement was left open. */
 MT_API int mt_query_finish(mt_query *q, char *out, size_t size);

@@ -33,7 +33,16 @@ struct mt_query {
     char *pending;    /* a statement waiting for its closing bracket or quote */
     size_t pending_len;
     int line_no, pending_line;
+    mt_warning_fn warn; /* warnings: unused parameters, redefinitions */
+    void *warn_ctx;
 };
+
+void mt_query_set_warning(mt_query *q, mt_warning_fn warn, void *ctx)
+{
+    q->warn = warn;
+    q->warn_ctx = ctx;
+    mt_state_set_warning(q->state, warn, ctx);
+}
 
 static void reset_point(mt_query *q)
 {
@@ -123,25 +132,20 @@ static mt_status apply(void *ctx, const mt_statement *st, mt_error *err)
     /* pbrt-v2 creates a material at MakeNamedMaterial; here a Material or
      * MakeNamedMaterial is created at once too, so errors show on its line */
     if (!strcmp(st->directive, "Material") || !strcmp(st->directive, "MakeNamedMaterial")) {
-        mt_material *m;
-        if (!strcmp(st->directive, "MakeNamedMaterial")) {
-            mt_material_spec spec;
-            mt_texparams tp;
-            if (mt_state_named_material(a->q->state, st->args[0].string, &spec, err)) return err->status;
-            tp.geom = spec.geom;
-            tp.material = spec.material;
-            tp.textures = spec.textures;
-            tp.mode = a->q->mode;
-            (void)tp;
-        }
-        m = mt_material_from_state(a->q->state, NULL, err);
-        if (!strcmp(st->directive, "Material")) {
-            if (!m) {
-                mt_error_locate(err, st->file, st->line, st->column);
-                return err->status;
-            }
+        int named = !strcmp(st->directive, "MakeNamedMaterial");
+        mt_material_spec spec;
+        mt_material *m = named ? mt_material_named_from_state(a->q->state, st->args[0].string, err)
+                               : mt_material_from_state(a->q->state, NULL, err);
+        if (!m) {
+            if (!err->file[0]) mt_error_locate(err, st->file, st->line, st->column);
+            return err->status;
         }
         mt_material_release(m);
+        mt_error_clear(err);
+        /* what the material did not read, as the renderer reports it */
+        if (named ? mt_state_named_material(a->q->state, st->args[0].string, &spec, err) == MT_OK
+                  : (mt_state_material(a->q->state, &spec), 1))
+            mt_paramset_report_unused(named ? spec.geom : spec.material, a->q->warn, a->q->warn_ctx);
         mt_error_clear(err);
     }
     return MT_OK;
