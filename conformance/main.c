@@ -10,6 +10,9 @@
  *   materia-conformance --errata             the measured size of each erratum
  *   materia-conformance --dump FILE          values for the float/double comparison
  *   materia-conformance --ulps OTHER_BINARY  compare with the other precision
+ *
+ * Exit status 0 when every check passes, 1 when one fails, 2 on a wrong
+ * command line (an --only that selects nothing included).
  */
 #include <pthread.h>
 #include <stdio.h>
@@ -250,6 +253,21 @@ static int count_verdicts(const cf_rows *r, cf_verdict v)
     return n;
 }
 
+static const char usage_text[] =
+    "usage: materia-conformance [--full | --lite] [--only TEXT] [--threads N] [--ulps OTHER_BINARY]\n"
+    "       materia-conformance --errata | --dump FILE | --help | --version\n"
+    "Runs the physics checks of every BxDF configuration in the catalog, in both modes\n"
+    "(docs/CONFORMANCE-SUITE.md).\n"
+    "  --full          40 times the samples and 10 times the cells (slow)\n"
+    "  --lite          fewer samples (what the sanitizer builds run)\n"
+    "  --only TEXT     only the configurations whose name contains TEXT (\"pointwise\": the\n"
+    "                  pair-by-pair checks alone); an error when none does\n"
+    "  --threads N     worker threads, 1 to 16 (default: the processors online)\n"
+    "  --ulps OTHER    compare with the other precision's materia-conformance\n"
+    "  --errata        the measured size of each pbrt-v2 erratum\n"
+    "  --dump FILE     the values the float/double comparison reads\n"
+    "Exit status 0 all passed, 1 a check failed, 2 wrong command line.\n";
+
 int main(int argc, char **argv)
 {
     cf_config cfg;
@@ -270,16 +288,29 @@ int main(int argc, char **argv)
             cfg.full = -1;
         else if (!strcmp(argv[i], "--only") && i + 1 < argc)
             cfg.only = argv[++i];
-        else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
-            cfg.threads = atoi(argv[++i]) < 1 ? 1 : (atoi(argv[i]) > 16 ? 16 : atoi(argv[i]));
-        else if (!strcmp(argv[i], "--errata"))
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
+            char *end;
+            long n = strtol(argv[++i], &end, 10);
+            if (end == argv[i] || *end || n < 1 || n > 16) {
+                fprintf(stderr, "materia-conformance: --threads needs a whole number from 1 to 16, not \"%s\"\n",
+                        argv[i]);
+                return 2;
+            }
+            cfg.threads = (int)n;
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(usage_text, stdout);
+            return 0;
+        } else if (!strcmp(argv[i], "--version")) {
+            printf("materia-conformance (materia) %s, %s\n", mt_version(), mt_precision());
+            return 0;
+        } else if (!strcmp(argv[i], "--errata"))
             return cf_errata_report();
         else if (!strcmp(argv[i], "--dump") && i + 1 < argc)
             return cf_dump(argv[++i]) ? 1 : 0;
         else if (!strcmp(argv[i], "--ulps") && i + 1 < argc)
             ulps_other = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--full] [--only TEXT] [--threads N] [--dump FILE] [--ulps OTHER]\n", argv[0]);
+            fprintf(stderr, "materia-conformance: unknown option or missing value: %s\n%s", argv[i], usage_text);
             return 2;
         }
     }
@@ -297,6 +328,11 @@ int main(int argc, char **argv)
         if (cfg.only && !strstr(s->name, cfg.only)) continue;
         p.jobs[p.njobs++].s = s;
         cfg.tests += (long)cf_wo_set(s, wos, 8) * 3 * ((s->flags & CF_BROKEN) ? 1 : 2);
+    }
+    if (cfg.only && p.njobs == 0 && strcmp(cfg.only, "pointwise") != 0) {
+        fprintf(stderr, "materia-conformance: --only \"%s\" selects no configuration\n", cfg.only);
+        free(p.jobs);
+        return 2;
     }
     cfg.alpha_test = cf_sidak(cfg.alpha, cfg.tests);
     printf("materia-conformance (%s build, %s): %d configurations, %ld samples per direction, %dx%d cells,\n"

@@ -16,9 +16,10 @@
 #include "support/check.h"
 #include "support/timage.h"
 #include "support/tfiles.h"
+#include "support/ttools.h"
 
 static const char *dir;   /* the test's private directory */
-static char bindir[1024]; /* where the tools are */
+static const char *bindir; /* where the tools are */
 
 /* The largest |difference| between a pixel's first three channels and rgb. */
 static double off(const mt_image *img, int x, int y, const float *rgb)
@@ -238,34 +239,7 @@ static void test_sheet(void)
 
 /* ---- the tools ----------------------------------------------------------- */
 
-/* Whether dir/name holds the text. */
-static int holds(const char *name, const char *text)
-{
-    static char buf[8192];
-    FILE *f = fopen(t_tmp_path(name), "r");
-    size_t n;
-    if (!f) return 0;
-    n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = 0;
-    return strstr(buf, text) != NULL;
-}
-
-/* Runs TOOL ARGS in the test's directory, stdout to out.txt and stderr to
- * err.txt, and checks its exit status and that `file` holds `text`. */
-static void tool(const char *name, const char *toolname, const char *args, int want,
-                 const char *file, const char *text)
-{
-    char cmd[4096];
-    int rc;
-    snprintf(cmd, sizeof cmd, "cd '%s' && '%s/%s' %s >out.txt 2>err.txt", dir, bindir, toolname,
-             args);
-    rc = system(cmd);
-    rc = rc != -1 && WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-    t_check(rc == want && holds(file, text), name, "exit %d (want %d), %s %s \"%s\"", rc, want,
-            file, holds(file, text) ? "holds" : "lacks", text);
-}
-
+/* Writes img into the test's directory as name. */
 static int write_image(const char *name, const mt_image *img)
 {
     mt_error err;
@@ -293,61 +267,47 @@ static void test_tools(void)
         t_fail("tools", "%s is not built or the test images cannot be written", path);
         return;
     }
-    tool("imgdiff: compares and prints pbrt-v2's metric (one block 10% off)", "materia-imgdiff",
+    t_tool_check("imgdiff: compares and prints pbrt-v2's metric (one block 10% off)", "materia-imgdiff",
          "a.pfm b.pfm", 0, "out.txt", "noise-max 0.0980392");
-    t_check(holds("out.txt", "noise-mean ") && holds("out.txt", "rmse ") &&
-                holds("out.txt", "relmse ") && holds("out.txt", "max-diff 0.05") &&
-                holds("out.txt", "lum-ratio ") && !holds("out.txt", "ztest"),
+    t_check(t_file_holds("out.txt", "noise-mean ") && t_file_holds("out.txt", "rmse ") &&
+                t_file_holds("out.txt", "relmse ") && t_file_holds("out.txt", "max-diff 0.05") &&
+                t_file_holds("out.txt", "lum-ratio ") && !t_file_holds("out.txt", "ztest"),
             "imgdiff: prints noise, rmse, relmse, max-diff, lum-ratio (no z-test without variance)",
             "output incomplete");
-    tool("imgdiff: a missing file is exit 1 naming it", "materia-imgdiff", "a.pfm missing.exr", 1,
+    t_tool_check("imgdiff: a missing file is exit 1 naming it", "materia-imgdiff", "a.pfm missing.exr", 1,
          "err.txt", "missing.exr: cannot open");
-    tool("imgdiff: a size mismatch is exit 1", "materia-imgdiff", "a.pfm c.pfm", 1, "err.txt",
+    t_tool_check("imgdiff: a size mismatch is exit 1", "materia-imgdiff", "a.pfm c.pfm", 1, "err.txt",
          "size mismatch: c.pfm is 8 x 8 but a.pfm is 16 x 12");
-    tool("imgdiff: --fail-above below the difference is exit 2", "materia-imgdiff",
-         "a.pfm b.pfm --fail-above 0.001", 2, "err.txt", "exceeds 0.001");
-    tool("imgdiff: --fail-above over the difference is exit 0", "materia-imgdiff",
+    t_tool_check("imgdiff: --fail-above below the difference is exit 1", "materia-imgdiff",
+         "a.pfm b.pfm --fail-above 0.001", 1, "err.txt", "exceeds 0.001");
+    t_tool_check("imgdiff: --fail-above over the difference is exit 0", "materia-imgdiff",
          "a.pfm b.pfm --fail-above 0.01", 0, "out.txt", "noise-mean");
-    tool("imgdiff: the z-test finds the 10% block and --fail-ztest exits 2", "materia-imgdiff",
-         "a.pfm b.pfm --var-a v.exr --var-b v.exr --fail-ztest", 2, "out.txt", "ztest FAIL");
-    tool("imgdiff: an image against itself passes the z-test", "materia-imgdiff",
+    t_tool_check("imgdiff: the z-test finds the 10% block and --fail-ztest exits 1", "materia-imgdiff",
+         "a.pfm b.pfm --var-a v.exr --var-b v.exr --fail-ztest", 1, "out.txt", "ztest FAIL");
+    t_tool_check("imgdiff: an image against itself passes the z-test", "materia-imgdiff",
          "b.pfm b.pfm --var-b v.exr --heatmap z.png --heatmap-z", 0, "out.txt", "ztest pass");
-    tool("imgdiff: writes the heat map", "materia-imgdiff", "a.pfm b.pfm --heatmap heat.png", 0,
+    t_tool_check("imgdiff: writes the heat map", "materia-imgdiff", "a.pfm b.pfm --heatmap heat.png", 0,
          "out.txt", "heatmap heat.png");
     check_png("heat.png", 16, 12 + 19, 0, 0, NULL, "imgdiff: the heat map is readable");
-    tool("imgdiff: one image is exit 1", "materia-imgdiff", "a.pfm", 1, "err.txt", "usage");
-    tool("imgdiff: a bad number is exit 1", "materia-imgdiff", "--block x a.pfm b.pfm", 1,
+    t_tool_check("imgdiff: one image is exit 2 (usage)", "materia-imgdiff", "a.pfm", 2, "err.txt", "usage");
+    t_tool_check("imgdiff: a bad number is exit 2 (usage)", "materia-imgdiff", "--block x a.pfm b.pfm", 2,
          "err.txt", "--block needs a whole number between 1 and 4096");
 
-    tool("sheet: writes a contact sheet", "materia-sheet", "-o s.png --columns 2 one=a.pfm b.pfm",
+    t_tool_check("sheet: writes a contact sheet", "materia-sheet", "-o s.png --columns 2 one=a.pfm b.pfm",
          0, "err.txt", "");
     check_png("s.png", 2 * 16 + 3 * 4, 12 + 11 + 2 * 4, 0, 0, NULL,
               "sheet: the contact sheet is readable");
-    tool("sheet: a missing image is exit 1 naming it", "materia-sheet", "-o s2.png x=missing.pfm",
+    t_tool_check("sheet: a missing image is exit 1 naming it", "materia-sheet", "-o s2.png x=missing.pfm",
          1, "err.txt", "missing.pfm: cannot open");
-    tool("sheet: no -o is exit 1", "materia-sheet", "a.pfm", 1, "err.txt", "no output file");
-    tool("sheet: --help is exit 0", "materia-sheet", "--help", 0, "out.txt", "usage");
-    tool("imgdiff: --help is exit 0", "materia-imgdiff", "--help", 0, "out.txt", "usage");
-}
-
-/* The tools sit in BUILD/bin, the test in BUILD/tests; the path is made
- * absolute, since the tools run in the test's directory. */
-static void find_bindir(const char *argv0)
-{
-    const char *slash = strrchr(argv0, '/');
-    char cwd[512];
-    int len = slash ? (int)(slash - argv0) : 1;
-    if (!slash) argv0 = ".";
-    if (argv0[0] == '/' || !getcwd(cwd, sizeof cwd))
-        snprintf(bindir, sizeof bindir, "%.*s/../bin", len, argv0);
-    else
-        snprintf(bindir, sizeof bindir, "%s/%.*s/../bin", cwd, len, argv0);
+    t_tool_check("sheet: no -o is exit 2 (usage)", "materia-sheet", "a.pfm", 2, "err.txt", "no output file");
+    t_tool_check("sheet: --help is exit 0", "materia-sheet", "--help", 0, "out.txt", "usage");
+    t_tool_check("imgdiff: --help is exit 0", "materia-imgdiff", "--help", 0, "out.txt", "usage");
 }
 
 int main(int argc, char **argv)
 {
     (void)argc;
-    find_bindir(argv[0]);
+    bindir = t_tool_bindir(argv[0]);
     if (!(dir = t_tmpdir_create("imgtools"))) {
         t_fail("imgtools", "cannot create a temporary directory");
         return t_status();

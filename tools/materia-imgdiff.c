@@ -9,11 +9,11 @@
  *                   [--fail-above X] [--fail-ztest]
  *
  * A is the image under test, B the reference (relative differences divide by
- * B). Exit status: 0 when the images were compared, 1 on an error (a file
- * unreadable, sizes or channels that differ, a bad argument), 2 when
- * --fail-above X is given and the mean relative difference (pbrt-v2's
- * metric, noise-mean) exceeds X, or --fail-ztest is given and the z-test
- * fails.
+ * B). Exit status: 0 when the images were compared (and passed what
+ * --fail-above and --fail-ztest ask), 1 on a failure (a file unreadable,
+ * sizes or channels that differ, the mean relative difference -- pbrt-v2's
+ * metric, noise-mean -- above --fail-above X, the z-test failed under
+ * --fail-ztest), 2 on a wrong command line.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,10 +40,11 @@ static int usage(FILE *f)
             "A: the image under test, B: the reference (EXR, PNG or PFM). Prints pbrt-v2's\n"
             "noise metric (block means, |a - b| / (b + 0.01)), RMSE, relative MSE, the\n"
             "largest difference, and the z-test when a variance image is given.\n"
-            "Exit status 0 compared, 1 error, 2 over --fail-above or z-test failed\n"
-            "with --fail-ztest.\n",
-            prog);
-    return f == stdout ? 0 : 1;
+            "Exit status 0 compared, 1 failure (an unreadable file, over --fail-above, the\n"
+            "z-test failed with --fail-ztest), 2 wrong command line.\n"
+            "       %s --help | --version\n",
+            prog, prog);
+    return f == stdout ? 0 : 2;
 }
 
 /* Returns -1 to go on, else the exit status. */
@@ -59,13 +60,17 @@ static int parse(int argc, char **argv, args *a)
     for (i = 1; i < argc; ++i) {
         const char *o = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(o, "--help") || !strcmp(o, "-h")) return usage(stdout);
+        if (!strcmp(o, "--version")) {
+            printf("%s (materia) %s, %s\n", prog, mt_version(), mt_precision());
+            return 0;
+        }
         if (!strcmp(o, "--heatmap-z"))
             a->heatmap_z = 1;
         else if (!strcmp(o, "--fail-ztest"))
             a->fail_ztest = 1;
         else if (o[0] == '-' && o[1] == '-' && !val) {
             fprintf(stderr, "%s: %s needs a value (or is unknown)\n", prog, o);
-            return 1;
+            return 2;
         } else if (!strcmp(o, "--var-a"))
             a->var_a = argv[++i];
         else if (!strcmp(o, "--var-b"))
@@ -73,14 +78,14 @@ static int parse(int argc, char **argv, args *a)
         else if (!strcmp(o, "--heatmap"))
             a->heatmap = argv[++i];
         else if (!strcmp(o, "--block")) {
-            if (!tool_number(prog, o, argv[++i], 1, 4096, 1, &v)) return 1;
+            if (!tool_number(prog, o, argv[++i], 1, 4096, 1, &v)) return 2;
             a->block = (int)v;
         } else if (!strcmp(o, "--alpha")) {
-            if (!tool_number(prog, o, argv[++i], 1e-12, 0.5, 0, &a->alpha)) return 1;
+            if (!tool_number(prog, o, argv[++i], 1e-12, 0.5, 0, &a->alpha)) return 2;
         } else if (!strcmp(o, "--heatmap-max")) {
-            if (!tool_number(prog, o, argv[++i], 1e-30, 1e30, 0, &a->heatmap_max)) return 1;
+            if (!tool_number(prog, o, argv[++i], 1e-30, 1e30, 0, &a->heatmap_max)) return 2;
         } else if (!strcmp(o, "--fail-above")) {
-            if (!tool_number(prog, o, argv[++i], 0, 1e30, 0, &a->fail_above)) return 1;
+            if (!tool_number(prog, o, argv[++i], 0, 1e30, 0, &a->fail_above)) return 2;
         } else if (o[0] == '-' && o[1] == '-') {
             fprintf(stderr, "%s: unknown option %s\n", prog, o);
             return usage(stderr);
@@ -90,7 +95,7 @@ static int parse(int argc, char **argv, args *a)
             a->b = o, npos++;
         else {
             fprintf(stderr, "%s: one image to test and one reference, not also \"%s\"\n", prog, o);
-            return 1;
+            return 2;
         }
     }
     if (npos != 2) {
@@ -99,7 +104,14 @@ static int parse(int argc, char **argv, args *a)
     }
     if (a->heatmap_z && !a->var_a && !a->var_b) {
         fprintf(stderr, "%s: --heatmap-z needs --var-a or --var-b\n", prog);
-        return 1;
+        return 2;
+    }
+    if (a->heatmap) { /* before reading and comparing the images */
+        mt_error err;
+        if (mt_image_check_writable(a->heatmap, &err) != MT_OK) {
+            fprintf(stderr, "%s: --heatmap: %s\n", prog, err.message);
+            return 1;
+        }
     }
     return -1;
 }
@@ -203,7 +215,7 @@ static int compare(const args *a, mt_image im[4])
                             "bias z %.3f against %.3f, %ld zero-variance blocks differ)\n",
                     prog, zr.beyond, zr.tests, zr.bias_c >= 0 ? zr.bias_z[zr.bias_c] : 0.0,
                     zr.bias_z_threshold, zr.exact_mismatch);
-            status = 2;
+            status = 1;
         }
     }
     if (a->heatmap) {
@@ -217,7 +229,7 @@ static int compare(const args *a, mt_image im[4])
     if (a->fail_above >= 0 && nm.mean > a->fail_above) {
         fprintf(stderr, "%s: mean relative difference %.6g exceeds %g\n", prog, nm.mean,
                 a->fail_above);
-        status = 2;
+        status = 1;
     }
     return status;
 }

@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "materia.h"
 #include "materia/measured.h"
 
 static void usage(FILE *f)
@@ -35,6 +36,7 @@ static void usage(FILE *f)
             "               the default) or centre (half the lookup error; a table of a MERL\n"
             "               material reproduces its table)\n"
             "  --dir DIR    the directory relative file names resolve against (default: .)\n"
+            "       materia-merl --help | --version\n"
             "Exit status: 0 written, 1 error (message on standard error), 2 bad usage.\n");
 }
 
@@ -78,7 +80,11 @@ int main(int argc, char **argv)
     int i, ok = 1;
     mt_error err;
     for (i = 1; i < argc && ok; ++i) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+        if (!strcmp(argv[i], "--version")) {
+            printf("materia-merl (materia) %s, %s\n", mt_version(), mt_precision());
+            free(text);
+            return 0;
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout);
             free(text);
             return 0;

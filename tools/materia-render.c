@@ -6,23 +6,33 @@
  *                  [--variance var.exr]
  *
  * The image goes to -o, else to the Film's "filename" (resolved against the
- * current directory, as pbrt-v2 does). Errors print file:line and the
- * message and exit with status 1 without writing anything.
+ * current directory, as pbrt-v2 does); its extension and directory are
+ * checked before the render starts. Errors print file:line and the message
+ * and exit with status 1 without writing anything; a wrong command line
+ * exits with status 2. The progress line is shown only when standard error
+ * is a terminal; --quiet also drops the summary and the notice that the
+ * scene's Sampler is replaced by materia's own.
  */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "materia.h"
 #include "materia/render.h"
 
 static const char *usage =
     "usage: materia-render scene.pbrt [-o out.exr|.png|.pfm] [--spp N] [--threads N]\n"
-    "                      [--seed S] [--mode pbrt-v2|corrected] [--quiet] [--variance var.exr]\n";
+    "                      [--seed S] [--mode pbrt-v2|corrected] [--quiet] [--variance var.exr]\n"
+    "       materia-render --help | --version\n";
+
+static int quiet;
 
 static void warn(void *ctx, const char *file, int line, const char *msg)
 {
     (void)ctx;
+    /* a notice about materia's sampler, not a problem of the scene */
+    if (quiet && strncmp(msg, "Sampler \"", 9) == 0) return;
     if (file && *file) fprintf(stderr, "%s:%d: warning: %s\n", file, line, msg);
     else fprintf(stderr, "warning: %s\n", msg);
 }
@@ -72,13 +82,16 @@ int main(int argc, char **argv)
     mt_image img, var;
     mt_scene *s;
     mt_error err;
-    int quiet = 0, i;
+    int i;
     long long v;
     mt_render_options_default(&o);
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             fputs(usage, stdout);
+            return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            printf("materia-render (materia) %s, %s\n", mt_version(), mt_precision());
             return 0;
         } else if (strcmp(a, "-o") == 0) {
             if (!val) return bad_option(a, val);
@@ -115,9 +128,15 @@ int main(int argc, char **argv)
         return 2;
     }
     o.warn = warn;
-    if (!quiet) o.progress = progress;
+    if (!quiet && isatty(STDERR_FILENO)) o.progress = progress;
     if (!(s = mt_scene_load(scene, &o, &err))) return fail(&err);
     if (!out) out = mt_scene_filename(s);
+    /* a typo in the output path fails now, not after the render */
+    if (mt_image_check_writable(out, &err) != MT_OK ||
+        (var_path && mt_image_check_writable(var_path, &err) != MT_OK)) {
+        mt_scene_destroy(s);
+        return fail(&err);
+    }
     if (mt_scene_render(s, &o, &img, var_path ? &var : NULL, &stats, &err) != MT_OK) {
         mt_scene_destroy(s);
         return fail(&err);

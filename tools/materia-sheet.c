@@ -23,9 +23,12 @@ static int usage(FILE *f)
 {
     fprintf(f,
             "usage: %s -o SHEET.png [--columns N] [--exposure STOPS] [--font-scale K]\n"
-            "       LABEL=IMAGE ... (or IMAGE: labelled with its file name)\n",
-            prog);
-    return f == stdout ? 0 : 1;
+            "       LABEL=IMAGE ... (or IMAGE: labelled with its file name)\n"
+            "       %s --help | --version\n"
+            "Exit status 0 written, 1 failure (an image unreadable, the sheet not written),\n"
+            "2 wrong command line.\n",
+            prog, prog);
+    return f == stdout ? 0 : 2;
 }
 
 /* An integer option's value in [lo, hi]. */
@@ -69,6 +72,10 @@ int main(int argc, char **argv)
     int i, n = 0, status = 0;
     for (i = 1; i < argc; ++i)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return usage(stdout);
+        else if (!strcmp(argv[i], "--version")) {
+            printf("%s (materia) %s, %s\n", prog, mt_version(), mt_precision());
+            return 0;
+        }
     entries = calloc((size_t)argc, sizeof *entries);
     images = calloc((size_t)argc, sizeof *images);
     labels = calloc((size_t)argc, sizeof *labels);
@@ -82,11 +89,11 @@ int main(int argc, char **argv)
         if (!strcmp(o, "-o") && val)
             out = argv[++i];
         else if (!strcmp(o, "--columns") && val)
-            status = !integer(o, argv[++i], 0, 4096, &opt.columns);
+            status = integer(o, argv[++i], 0, 4096, &opt.columns) ? 0 : 2;
         else if (!strcmp(o, "--font-scale") && val)
-            status = !integer(o, argv[++i], 1, 16, &opt.font_scale);
+            status = integer(o, argv[++i], 1, 16, &opt.font_scale) ? 0 : 2;
         else if (!strcmp(o, "--exposure") && val)
-            status = !tool_number(prog, o, argv[++i], -64, 64, 0, &opt.exposure);
+            status = tool_number(prog, o, argv[++i], -64, 64, 0, &opt.exposure) ? 0 : 2;
         else if (o[0] == '-') {
             fprintf(stderr, "%s: unknown option %s%s\n", prog, o, val ? "" : " (or no value)");
             status = usage(stderr);
@@ -105,6 +112,10 @@ int main(int argc, char **argv)
     if (status == 0 && (!out || n == 0)) {
         fprintf(stderr, "%s: %s\n", prog, !out ? "no output file (-o SHEET.png)" : "no images");
         status = usage(stderr);
+    }
+    if (status == 0 && mt_image_check_writable(out, &err) != MT_OK) {
+        fprintf(stderr, "%s: %s\n", prog, err.message);
+        status = 1;
     }
     if (status == 0) {
         if (mt_sheet_make(entries, n, &opt, &sheet, &err) != MT_OK ||

@@ -73,6 +73,11 @@ typedef struct mt_image_attr {
 MT_API mt_status mt_image_write(const char *path, const mt_image *img, const mt_image_attr *attrs,
                                 int nattrs, mt_error *err);
 
+/* Whether mt_image_write could write path, checked before the work that
+ * makes the image: a known extension and an existing, writable directory.
+ * MT_OK, or an error saying which. */
+MT_API mt_status mt_image_check_writable(const char *path, mt_error *err);
+
 /* The sRGB transfer function and its inverse (IEC 61966-2-1). */
 MT_API float mt_srgb_to_linear(float v);
 MT_API float mt_linear_to_srgb(float v);

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "core/alloc.h"
 #include "image/imageio.h"
@@ -133,6 +134,31 @@ mt_status mt_image_write(const char *path, const mt_image *img, const mt_image_a
                             "%s: unknown image type (materia writes .exr, .png and .pfm)",
                             path);
     }
+}
+
+mt_status mt_image_check_writable(const char *path, mt_error *err)
+{
+    char dir[4096];
+    const char *slash;
+    struct stat sb;
+    size_t n;
+    if (!path || !path[0]) return mt_error_set(err, MT_ERR_INVALID, "no output file name");
+    if (format_of(path) == FMT_NONE)
+        return mt_error_set(err, MT_ERR_UNSUPPORTED,
+                            "%s: unknown image type (materia writes .exr, .png and .pfm)", path);
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return mt_error_set(err, MT_ERR_IO, "%s: is a directory", path);
+    /* the image is written to a temporary file beside it, then renamed */
+    slash = strrchr(path, '/');
+    n = slash ? (size_t)(slash - path) : 0;
+    if (n == 0) snprintf(dir, sizeof dir, "%s", slash ? "/" : ".");
+    else if (n < sizeof dir) snprintf(dir, sizeof dir, "%.*s", (int)n, path);
+    else return mt_error_set(err, MT_ERR_IO, "%s: the directory's name is too long", path);
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
+        return mt_error_set(err, MT_ERR_IO, "%s: no directory \"%s\"", path, dir);
+    if (access(dir, W_OK) != 0)
+        return mt_error_set(err, MT_ERR_IO, "%s: directory \"%s\" is not writable", path, dir);
+    return MT_OK;
 }
 
 /* IEC 61966-2-1, evaluated in double and rounded once. */

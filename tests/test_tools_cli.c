@@ -1,0 +1,131 @@
+/*
+ * What a user meets on the command line of every tool: --help on standard
+ * output with status 0, --version naming materia's version, a wrong option
+ * with status 2 (0 success, 1 failure, 2 usage throughout); materia-render's
+ * output path checked before it renders (a missing directory, an unknown
+ * extension), a bad material parameter failing with nothing written,
+ * --quiet dropping the Sampler notice, no progress line (no carriage return)
+ * when standard error is a file; materia-query's warnings for parameters a
+ * statement did not use; materia-conformance's --only that selects nothing.
+ */
+#include <string.h>
+#include <unistd.h>
+#include "support/check.h"
+#include "support/tfiles.h"
+#include "support/ttools.h"
+
+static const char *const tools[] = {"materia-render", "materia-query", "materia-imgdiff",
+                                    "materia-sheet",  "materia-merl",  "materia-conformance"};
+
+static void every_tool(void)
+{
+    char name[160], want[64];
+    size_t i;
+    snprintf(want, sizeof want, "(materia) %s, %s", MT_VERSION, mt_precision());
+    for (i = 0; i < sizeof tools / sizeof tools[0]; ++i) {
+        snprintf(name, sizeof name, "%s --help: usage on standard output, status 0", tools[i]);
+        t_tool_check(name, tools[i], "--help", 0, "out.txt", "usage: ");
+        snprintf(name, sizeof name, "%s --version: \"%s\", status 0", tools[i], want);
+        t_tool_check(name, tools[i], "--version", 0, "out.txt", want);
+        snprintf(name, sizeof name, "%s --no-such-option: status 2, named on standard error", tools[i]);
+        t_tool_check(name, tools[i], "--no-such-option", 2, "err.txt", "--no-such-option");
+    }
+}
+
+static int exists(const char *name) { return access(t_tmp_path(name), F_OK) == 0; }
+
+static const char scene[] = "Film \"image\" \"integer xresolution\" [8] \"integer yresolution\" [6]\n"
+                            "Sampler \"lowdiscrepancy\" \"integer pixelsamples\" [1]\n"
+                            "Camera \"perspective\"\n"
+                            "WorldBegin\n"
+                            "LightSource \"distant\"\n"
+                            "Translate 0 0 5\n"
+                            "Material \"plastic\" \"float roughness\" [%s]\n"
+                            "Shape \"sphere\"\n"
+                            "WorldEnd\n";
+
+static void render(void)
+{
+    char text[1024];
+    snprintf(text, sizeof text, scene, "0.1");
+    t_write_file("good.pbrt", text, (size_t)-1);
+    snprintf(text, sizeof text, scene, "-0.1");
+    t_write_file("bad.pbrt", text, (size_t)-1);
+    t_tool_check("render: writes the image", "materia-render", "good.pbrt -o good.exr", 0, "err.txt", "");
+    t_check(exists("good.exr"), "render: good.exr exists", "not written");
+    t_check(t_file_holds("err.txt", "warning: Sampler \"lowdiscrepancy\""), "render: the Sampler notice without --quiet",
+            "err.txt lacks it");
+    t_check(!t_file_holds("err.txt", "\r") && !t_file_holds("err.txt", "rendering:"),
+            "render: no progress line when standard error is a file", "err.txt has one");
+    t_tool_check("render: --quiet drops the Sampler notice", "materia-render", "--quiet good.pbrt -o quiet.exr", 0,
+                 "err.txt", "");
+    t_check(!t_file_holds("err.txt", "Sampler") && !t_file_holds("err.txt", "spp"), "render: --quiet is quiet",
+            "err.txt is not empty");
+    t_tool_check("render: an output in a missing directory fails before the render", "materia-render",
+                 "good.pbrt -o nosuchdir/x.exr", 1, "err.txt", "nosuchdir/x.exr: no directory \"nosuchdir\"");
+    t_tool_check("render: an unknown extension fails before the render", "materia-render", "good.pbrt -o x.tiff", 1,
+                 "err.txt", "x.tiff: unknown image type");
+    t_check(!exists("x.tiff"), "render: nothing written for x.tiff", "x.tiff exists");
+    t_tool_check("render: a bad --variance path fails before the render", "materia-render",
+                 "good.pbrt -o v.exr --variance nosuchdir/v.exr", 1, "err.txt", "no directory");
+    t_check(!exists("v.exr"), "render: nothing written when --variance is bad", "v.exr exists");
+    t_tool_check("render: a negative roughness is an error at its line, status 1", "materia-render",
+                 "bad.pbrt -o bad.exr", 1, "err.txt", "bad.pbrt:7:20: parameter \"roughness\": plastic material");
+    t_check(!exists("bad.exr"), "render: nothing written for a bad material", "bad.exr exists");
+    t_tool_check("render: a missing scene file is status 1", "materia-render", "missing.pbrt", 1, "err.txt",
+                 "missing.pbrt");
+    t_tool_check("render: no scene is status 2", "materia-render", "", 2, "err.txt", "usage");
+    t_tool_check("render: a bad --spp is status 2", "materia-render", "good.pbrt --spp 0", 2, "err.txt", "--spp");
+}
+
+static void query(void)
+{
+    t_write_file("q.txt",
+                 "Material \"matte\" \"rgb Kdd\" [0.3 0.3 0.3] \"float roughness\" [0.2]\n"
+                 "Texture \"t\" \"float\" \"fbm\" \"integer octave\" [3]\n"
+                 "Material \"plastic\" \"float roughness\" [0.2]\n"
+                 "Material \"plastic\" \"float roughness\" [-1]\n",
+                 (size_t)-1);
+    t_tool_check("query: statements with unused parameters are answered ok", "materia-query", "< q.txt", 0,
+                 "out.txt", "ok\nok\nok\nerror <input>:4:20: parameter \"roughness\"");
+    t_check(t_file_holds("err.txt", "warning <input>:1: Parameter \"roughness\" not used\n") &&
+                t_file_holds("err.txt", "warning <input>:1: Parameter \"Kdd\" not used\n") &&
+                t_file_holds("err.txt", "warning <input>:2: Parameter \"octave\" not used\n") &&
+                !t_file_holds("err.txt", "<input>:3:"),
+            "query: a warning on standard error for each unused parameter, none for a used one",
+            "standard error differs");
+    t_tool_check("query: --dir without a directory is status 2", "materia-query", "--dir", 2, "err.txt", "--dir");
+}
+
+static void conformance(void)
+{
+    t_tool_check("conformance: --only that selects nothing is status 2", "materia-conformance",
+                 "--only no-such-configuration", 2, "err.txt", "selects no configuration");
+    t_tool_check("conformance: a bad --threads is status 2", "materia-conformance", "--threads x", 2, "err.txt",
+                 "--threads");
+}
+
+static void others(void)
+{
+    t_tool_check("imgdiff: a missing image is status 1", "materia-imgdiff", "a.exr b.exr", 1, "err.txt", "a.exr");
+    t_tool_check("sheet: a heat map in a missing directory fails before the work", "materia-sheet",
+                 "-o nosuchdir/s.png good.exr", 1, "err.txt", "no directory");
+    t_tool_check("merl: no --out is status 2", "materia-merl", "'Material \"matte\"'", 2, "err.txt", "--out");
+}
+
+int main(int argc, char **argv)
+{
+    (void)argc;
+    t_tool_bindir(argv[0]);
+    if (!t_tmpdir_create("tools")) {
+        t_fail("tools", "cannot create a temporary directory");
+        return t_status();
+    }
+    every_tool();
+    render();
+    query();
+    conformance();
+    others();
+    t_tmpdir_remove();
+    return t_status();
+}
