@@ -10,7 +10,7 @@
 #                              only the side-by-side timing, a quick run
 #   make demo                  a contact sheet of every material: demo.png
 #   make golden                render the golden images again
-#   make install PREFIX=/usr/local DESTDIR=
+#   make install PREFIX=/usr/local DESTDIR=   (make uninstall with the same)
 #
 # CFLAGS, CPPFLAGS and LDFLAGS belong to the user: the flags materia needs are
 # kept in MT_* variables and added to them.
@@ -33,7 +33,7 @@ BUILD ?= build/$(PRECISION)$(if $(SANITIZE),-$(subst $(comma),-,$(SANITIZE)))
 # --- dependencies, found with pkg-config ------------------------------------
 # OpenEXR: only its C API (OpenEXRCore). The OpenEXR module's Libs would drag
 # in the C++ libraries, so only its variables are read.
-NEED_DEPS := $(filter-out clean distclean help,$(or $(MAKECMDGOALS),all))
+NEED_DEPS := $(filter-out clean distclean help uninstall,$(or $(MAKECMDGOALS),all))
 ifneq ($(NEED_DEPS),)
   DEPS_OK := $(shell $(PKG_CONFIG) --exists libpng OpenEXR 2>/dev/null && echo yes)
   ifneq ($(DEPS_OK),yes)
@@ -121,14 +121,19 @@ TESTS     := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCHES   := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 CONF_BIN  := $(BUILD)/bin/materia-conformance
 
+# A double-precision build is another library (its mt_real differs): it is
+# named materia-double (libmateria-double.so.0, materia-double.pc, headers
+# in include/materia-double, tools materia-*-double) so that both install
+# side by side.
+LIBNAME    := materia$(if $(filter double,$(PRECISION)),-double)
 STATIC_LIB := $(BUILD)/libmateria.a
 LTO_LIB    := $(if $(filter yes,$(LTO_OK)),$(BUILD)/obj/libmateria-lto.a,$(STATIC_LIB))
-SHARED_LIB := $(BUILD)/libmateria.so.$(VERSION)
-SONAME     := libmateria.so.$(SOVERSION)
+SHARED_LIB := $(BUILD)/lib$(LIBNAME).so.$(VERSION)
+SONAME     := lib$(LIBNAME).so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench bench-pbrt demo golden install clean distclean help
+.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench bench-pbrt demo golden install uninstall clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -173,7 +178,7 @@ endif
 $(SHARED_LIB): $(LIB_OBJ)
 	$(CC) -shared -Wl,-soname,$(SONAME) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $^ $(MT_LDLIBS) $(LDLIBS)
 	ln -sf $(notdir $@) $(BUILD)/$(SONAME)
-	ln -sf $(notdir $@) $(BUILD)/libmateria.so
+	ln -sf $(notdir $@) $(BUILD)/lib$(LIBNAME).so
 
 $(BUILD)/bin/materia-conformance: $(CONF_OBJ) $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
@@ -223,7 +228,8 @@ OTHER_CONF      := $(OTHER_BUILD)/bin/materia-conformance
 CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
 
 check: all tests $(if $(SANITIZE),,other-conformance)
-	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST)
+	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" \
+	    sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST)
 
 other-conformance:
 	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= BUILD=$(OTHER_BUILD) $(OTHER_CONF)
@@ -260,20 +266,43 @@ demo: all
 golden: all
 	sh tools/make-golden.sh $(BUILD)
 
+# Installed files: headers (include/, or include/materia-double for the
+# double build), lib<LIBNAME>.a and .so, <LIBNAME>.pc, the tools (with a
+# -double suffix for the double build) and the documentation with the
+# licence in share/doc/<LIBNAME>. make uninstall removes exactly these.
+INC_DIR   := $(PREFIX)/include$(if $(filter double,$(PRECISION)),/materia-double)
+LIB_DIR   := $(PREFIX)/lib
+BIN_DIR   := $(PREFIX)/bin
+DOC_DIR   := $(PREFIX)/share/doc/$(LIBNAME)
+TOOL_SUFFIX := $(if $(filter double,$(PRECISION)),-double)
+INSTALLED_TOOLS := $(notdir $(TOOLS) $(CONF_BIN))
+DOC_FILES := README.md LICENSE conformance/ERRATA.md $(sort $(wildcard docs/*.md))
+PUBLIC_HEADERS := $(sort $(notdir $(wildcard include/materia/*.h)) config.h)
+
 install: all
-	install -d $(DESTDIR)$(PREFIX)/include/materia $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/materia.h $(DESTDIR)$(PREFIX)/include/
-	install -m 644 include/materia/*.h $(CONFIG_H) $(DESTDIR)$(PREFIX)/include/materia/
-	install -m 644 $(STATIC_LIB) $(DESTDIR)$(PREFIX)/lib/
-	install -m 755 $(SHARED_LIB) $(DESTDIR)$(PREFIX)/lib/
-	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(PREFIX)/lib/$(SONAME)
-	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(PREFIX)/lib/libmateria.so
-	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin/
-	install -d $(DESTDIR)$(PREFIX)/share/doc/materia
-	install -m 644 LICENSE $(DESTDIR)$(PREFIX)/share/doc/materia/
-	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
+	install -d $(DESTDIR)$(INC_DIR)/materia $(DESTDIR)$(LIB_DIR)/pkgconfig $(DESTDIR)$(BIN_DIR) $(DESTDIR)$(DOC_DIR)
+	install -m 644 include/materia.h $(DESTDIR)$(INC_DIR)/
+	install -m 644 include/materia/*.h $(CONFIG_H) $(DESTDIR)$(INC_DIR)/materia/
+	install -m 644 $(STATIC_LIB) $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).a
+	install -m 755 $(SHARED_LIB) $(DESTDIR)$(LIB_DIR)/
+	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIB_DIR)/$(SONAME)
+	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).so
+	for t in $(INSTALLED_TOOLS); do install -m 755 $(BUILD)/bin/$$t $(DESTDIR)$(BIN_DIR)/$$t$(TOOL_SUFFIX) || exit 1; done
+	install -m 644 $(DOC_FILES) $(DESTDIR)$(DOC_DIR)/
+	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' -e 's|@LIBNAME@|$(LIBNAME)|g' \
+	    -e 's|@INCLUDEDIR@|$(INC_DIR:$(PREFIX)/%=%)|g' -e 's|@PRECISION@|$(PRECISION)|g' \
 	    -e 's|@PRIVATE_LIBS@|$(DEP_LIBS) -lpthread -lm|g' materia.pc.in \
-	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/materia.pc
+	    > $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME).pc
+
+uninstall:
+	rm -f $(DESTDIR)$(INC_DIR)/materia.h $(addprefix $(DESTDIR)$(INC_DIR)/materia/,$(PUBLIC_HEADERS))
+	rm -f $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).a $(DESTDIR)$(LIB_DIR)/$(notdir $(SHARED_LIB)) \
+	      $(DESTDIR)$(LIB_DIR)/$(SONAME) $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).so \
+	      $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME).pc
+	rm -f $(addprefix $(DESTDIR)$(BIN_DIR)/,$(addsuffix $(TOOL_SUFFIX),$(INSTALLED_TOOLS)))
+	rm -f $(addprefix $(DESTDIR)$(DOC_DIR)/,$(notdir $(DOC_FILES)))
+	-rmdir $(DESTDIR)$(INC_DIR)/materia $(DESTDIR)$(DOC_DIR) 2>/dev/null
+	$(if $(filter double,$(PRECISION)),-rmdir $(DESTDIR)$(INC_DIR) 2>/dev/null)
 
 clean:
 	rm -rf $(BUILD)

@@ -23,6 +23,14 @@ run() {
 for t in "$@"; do
     run "$(basename "$t")" "$t"
 done
+# make install into a temporary directory and a program built against it
+# (not under the sanitizers: a program linking the library would need them)
+if [ -n "${SANITIZE:-}" ]; then
+    echo "SKIP install: not tested in a sanitized build"
+    skipped=$((skipped + 1))
+else
+    run check-install sh tools/check-install.sh "$build" "$precision"
+fi
 if [ -n "${CXX_SKIP:-}" ]; then
     echo "SKIP c++ program: $CXX_SKIP"
     skipped=$((skipped + 1))
