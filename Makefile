@@ -10,6 +10,7 @@
 #                              only the side-by-side timing, a quick run
 #   make demo                  a contact sheet of every material: demo.png
 #   make golden                render the golden images again
+#   make reference             docs/REFERENCE.md from the parameter tables
 #   make install PREFIX=/usr/local DESTDIR=   (make uninstall with the same)
 #
 # CFLAGS, CPPFLAGS and LDFLAGS belong to the user: the flags materia needs are
@@ -133,13 +134,13 @@ SONAME     := lib$(LIBNAME).so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench bench-pbrt demo golden install uninstall clean distclean help
+.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench bench-pbrt demo golden install uninstall reference clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
 lib: $(STATIC_LIB) $(SHARED_LIB)
 tools: $(TOOLS)
-tests: $(TESTS) $(CXX_TEST) $(CONF_BIN)
+tests: $(TESTS) $(CXX_TEST) $(REF_GEN) $(CONF_BIN)
 benches: $(BENCHES)
 
 $(CONFIG_H): Makefile $(FLAGS_STAMP)
@@ -216,6 +217,16 @@ $(BUILD)/tests/test_cxx: tests/cxx/test_cxx.cpp $(STATIC_LIB) $(CONFIG_H)
 	$(CXX) $(MT_CXXFLAGS) $(CXXFLAGS) -Iinclude -I$(BUILD)/include $(CPPFLAGS) $(NO_LTO) \
 	    $(ALL_LDFLAGS) -o $@ $< $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
+# docs/REFERENCE.md, generated from the parameter tables the creators read;
+# make check fails when the committed file is not what they give.
+REF_GEN := $(BUILD)/tests/gen-reference
+$(REF_GEN): tools/reference/gen-reference.c $(STATIC_LIB) $(CONFIG_H)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CPPFLAGS) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
+reference: $(REF_GEN)
+	$(REF_GEN) > docs/REFERENCE.md.tmp && mv docs/REFERENCE.md.tmp docs/REFERENCE.md
+
 # Every test binary, then the conformance suite; one summary line at the end.
 # The suite compares this build with the other precision's (float versus
 # double ULPs); under the sanitizers it runs with fewer samples (--lite): the
@@ -228,7 +239,7 @@ OTHER_CONF      := $(OTHER_BUILD)/bin/materia-conformance
 CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
 
 check: all tests $(if $(SANITIZE),,other-conformance)
-	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" \
+	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" REF_GEN="$(REF_GEN)" \
 	    sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST)
 
 other-conformance:

@@ -23,6 +23,10 @@ run() {
 for t in "$@"; do
     run "$(basename "$t")" "$t"
 done
+# docs/REFERENCE.md against the tables it is generated from
+if [ -n "${REF_GEN:-}" ]; then
+    run reference "$REF_GEN" --check docs/REFERENCE.md
+fi
 # make install into a temporary directory and a program built against it
 # (not under the sanitizers: a program linking the library would need them)
 if [ -n "${SANITIZE:-}" ]; then

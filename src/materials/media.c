@@ -63,6 +63,14 @@ static const struct {
     {"Pacific Ocean Surface Water", {3.364500f, 3.315800f, 3.242800f}, {3.184500f, 3.132400f, 3.014700f}},
 };
 
+const char *mt__medium_at(int i, mt_rgb *sigma_a, mt_rgb *sigma_prime_s)
+{
+    if (i < 0 || (size_t)i >= sizeof media / sizeof media[0]) return NULL;
+    *sigma_a = mt_rgb_make(media[i].sigma_a[0], media[i].sigma_a[1], media[i].sigma_a[2]);
+    *sigma_prime_s = mt_rgb_make(media[i].sigma_prime_s[0], media[i].sigma_prime_s[1], media[i].sigma_prime_s[2]);
+    return media[i].name;
+}
+
 int mt__medium_lookup(const char *name, mt_rgb *sigma_a, mt_rgb *sigma_prime_s)
 {
     size_t i;

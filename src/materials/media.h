@@ -8,4 +8,8 @@
  * name is one of its measured media, 0 otherwise. */
 int mt__medium_lookup(const char *name, mt_rgb *sigma_a, mt_rgb *sigma_prime_s);
 
+/* The i-th medium of the table (its name, and its coefficients), or NULL
+ * past the end (docs/REFERENCE.md lists them). */
+const char *mt__medium_at(int i, mt_rgb *sigma_a, mt_rgb *sigma_prime_s);
+
 #endif

@@ -7,6 +7,7 @@
  */
 #include <string.h>
 #include "materia/mipmap.h"
+#include "textures/probe.h"
 #include "textures/tex.h"
 
 typedef mt_texture *(*creator)(int is_float, const mt_transform *tex2world,
@@ -39,6 +40,7 @@ static int choice(const mt_texparams *tp, const char *name, const char *def,
     const char *s;
     int i;
     if (mt_texparams_string(tp, name, def, &s, err)) return -1;
+    mt__texparams_probe(name, "string", def, choices);
     for (i = 0; choices[i]; ++i)
         if (!strcmp(s, choices[i])) return i;
     mt_error_param(err, MT_ERR_INVALID, name, "%s texture: unknown %s \"%s\"", cls, name, s);
@@ -291,6 +293,53 @@ static mt_texture *create_marble(int is_float, const mt_transform *tex2world,
         mt_texparams_float(tp, "variation", (mt_real)0.2, &variation, err))
         return NULL;
     return mt__tex_marble(&m, oct, rough, scale, variation, tp->mode, err);
+}
+
+/* What each parameter the creators read is and the values it takes, for
+ * docs/REFERENCE.md (the names, types and defaults come from the readers
+ * themselves, through textures/probe.h; the check that the committed file
+ * is current also checks that every parameter read is described here and
+ * every one described is read). cls NULL: the same in every class. */
+static const mt__texture_param_doc docs[] = {
+    {NULL, "mapping", "uv, spherical, cylindrical or planar", "how (u, v) are found at a point"},
+    {NULL, "uscale", "finite", "uv mapping: u times uscale"},
+    {NULL, "vscale", "finite", "uv mapping: v times vscale"},
+    {NULL, "udelta", "finite", "uv and planar mappings: added to u"},
+    {NULL, "vdelta", "finite", "uv and planar mappings: added to v"},
+    {NULL, "v1", "finite", "planar mapping: u is the point's projection on v1"},
+    {NULL, "v2", "finite", "planar mapping: v is the point's projection on v2"},
+    {NULL, "octaves", "0 to 128", "noise octaves (fewer where the filter width asks)"},
+    {NULL, "roughness", "finite; the octaves' total weight finite", "weight of each octave relative to the last"},
+    {"constant", "value", "finite", "the value everywhere"},
+    {"scale", "tex1", "any", "tex1 times tex2"},
+    {"scale", "tex2", "any", "tex1 times tex2"},
+    {"mix", "tex1", "any", "(1 - amount) tex1 + amount tex2"},
+    {"mix", "tex2", "any", "(1 - amount) tex1 + amount tex2"},
+    {"mix", "amount", "any (used as it is)", "the weight of tex2"},
+    {"bilerp", "v00", "finite", "the value at (u, v) = (0, 0)"},
+    {"bilerp", "v01", "finite", "the value at (0, 1)"},
+    {"bilerp", "v10", "finite", "the value at (1, 0)"},
+    {"bilerp", "v11", "finite", "the value at (1, 1)"},
+    {"imagemap", "filename", "an .exr, .png or .pfm file (required)", "the image, read once per process"},
+    {"imagemap", "maxanisotropy", "> 0 (with EWA filtering)", "the longest ellipse axis over the shortest"},
+    {"imagemap", "trilinear", "true or false", "trilinear filtering instead of EWA"},
+    {"imagemap", "wrap", "repeat, black or clamp", "lookups outside [0, 1]"},
+    {"imagemap", "scale", "finite", "texel values times scale"},
+    {"imagemap", "gamma", ">= 0", "texel values to the power gamma (after scale)"},
+    {"checkerboard", "dimension", "2 or 3", "2: on (u, v); 3: in space (no mapping, no antialiasing)"},
+    {"checkerboard", "tex1", "any", "the even squares"},
+    {"checkerboard", "tex2", "any", "the odd squares"},
+    {"checkerboard", "aamode", "none or closedform", "2D antialiasing: none, or the closed-form box filter"},
+    {"dots", "inside", "any", "inside the dots"},
+    {"dots", "outside", "any", "between the dots"},
+    {"marble", "scale", "finite", "the point's coordinates times scale"},
+    {"marble", "variation", "finite", "the strength of the noise in the marble's bands"},
+};
+
+const mt__texture_param_doc *mt__texture_param_docs(int *count)
+{
+    *count = (int)(sizeof docs / sizeof docs[0]);
+    return docs;
 }
 
 static const struct {

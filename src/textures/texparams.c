@@ -10,7 +10,40 @@
  * texture name that is not in the table, or names a texture of the other
  * kind, is an error naming the parameter.
  */
+#include <stdio.h>
+#include "textures/probe.h"
 #include "textures/tex.h"
+
+static mt__texparams_probe_fn probe_fn;
+static void *probe_ctx;
+
+void mt__texparams_set_probe(mt__texparams_probe_fn fn, void *ctx)
+{
+    probe_fn = fn;
+    probe_ctx = ctx;
+}
+
+void mt__texparams_probe(const char *name, const char *type, const char *def, const char *const *choices)
+{
+    if (probe_fn) probe_fn(probe_ctx, name, type, def, choices);
+}
+
+/* The probe with a default formatted as a scene would write it. */
+static void probe_real(const char *name, const char *type, mt_real v)
+{
+    char buf[32];
+    if (!probe_fn) return;
+    snprintf(buf, sizeof buf, "%.4g", (double)v);
+    probe_fn(probe_ctx, name, type, buf, NULL);
+}
+
+static void probe_triple(const char *name, const char *type, const mt_real *v)
+{
+    char buf[96];
+    if (!probe_fn) return;
+    snprintf(buf, sizeof buf, "%.4g %.4g %.4g", (double)v[0], (double)v[1], (double)v[2]);
+    probe_fn(probe_ctx, name, type, buf, NULL);
+}
 
 static const mt_paramset *source(const mt_texparams *tp, const char *name)
 {
@@ -24,42 +57,51 @@ static const mt_paramset *source(const mt_texparams *tp, const char *name)
 mt_status mt_texparams_float(const mt_texparams *tp, const char *name, mt_real def,
                              mt_real *out, mt_error *err)
 {
+    probe_real(name, "float", def);
     return mt_params_float(source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_int(const mt_texparams *tp, const char *name, int def, int *out,
                            mt_error *err)
 {
+    probe_real(name, "integer", (mt_real)def);
     return mt_params_int(source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_bool(const mt_texparams *tp, const char *name, int def, int *out,
                             mt_error *err)
 {
+    mt__texparams_probe(name, "bool", def ? "true" : "false", NULL);
     return mt_params_bool(source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_string(const mt_texparams *tp, const char *name, const char *def,
                               const char **out, mt_error *err)
 {
+    mt__texparams_probe(name, "string", def, NULL);
     return mt_params_string(source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_filename(const mt_texparams *tp, const char *name, const char *def,
                                 char *out, size_t size, mt_error *err)
 {
+    mt__texparams_probe(name, "string", def, NULL);
     return mt_params_filename(source(tp, name), name, def, out, size, err);
 }
 
 mt_status mt_texparams_vector(const mt_texparams *tp, const char *name, mt_vec3 def,
                               mt_vec3 *out, mt_error *err)
 {
+    mt_real v[3];
+    v[0] = def.x, v[1] = def.y, v[2] = def.z;
+    probe_triple(name, "vector", v);
     return mt_params_vector(source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_rgb def, mt_rgb *out,
                            mt_error *err)
 {
+    probe_triple(name, "rgb", def.c);
     return mt_params_rgb(source(tp, name), name, def, out, err);
 }
 
@@ -120,6 +162,7 @@ mt_texture *mt_texparams_float_texture(const mt_texparams *tp, const char *name,
     mt_texture *t;
     mt_real v;
     int found;
+    probe_real(name, "float texture", def); /* first: the value read below reports "float" */
     if (named_texture(tp, name, 1, &t, &found, err) || found) return t;
     if (mt_texparams_float(tp, name, def, &v, err)) return NULL;
     return mt__tex_constant(1, mt_rgb_gray(v), tp->mode, err);
@@ -131,6 +174,7 @@ mt_texture *mt_texparams_spectrum_texture(const mt_texparams *tp, const char *na
     mt_texture *t;
     mt_rgb v;
     int found;
+    probe_triple(name, "spectrum texture", def.c);
     if (named_texture(tp, name, 0, &t, &found, err) || found) return t;
     if (mt_texparams_rgb(tp, name, def, &v, err)) return NULL;
     return mt__tex_constant(0, v, tp->mode, err);
@@ -142,7 +186,9 @@ mt_status mt_texparams_float_texture_opt(const mt_texparams *tp, const char *nam
     const mt_paramset *list;
     const mt_param *p;
     int found;
-    mt_status st = named_texture(tp, name, 1, out, &found, err);
+    mt_status st;
+    mt__texparams_probe(name, "float texture", "none", NULL);
+    st = named_texture(tp, name, 1, out, &found, err);
     if (st || found) return st;
     /* pbrt-v2 reads only a texture here and ignores a value of another type
      * (then reported unused); materia says so */
