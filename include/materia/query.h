@@ -14,8 +14,11 @@
  *   bssrdf                  -> sa_r sa_g sa_b sps_r sps_g sps_b eta | none
  *   shading   -> nx ny nz dpdux dpduy dpduz dpdvx dpdvy dpdvz (after bump)
  *   texture "name"                                 -> value | r g b
+ *   version      -> protocol <N> materia <version> precision float|double
  * A bad line is answered "error <message>" and the session goes on. A
  * statement continues on the next line while a bracket or string is open.
+ * The whole protocol, with its rules for state, errors and numbers, is
+ * docs/PROTOCOL.md; MT_QUERY_PROTOCOL_VERSION is its version.
  */
 #ifndef MATERIA_QUERY_H
 #define MATERIA_QUERY_H
@@ -26,6 +29,10 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Raised when a line type, an answer's shape or a rule of docs/PROTOCOL.md
+ * changes; the "version" query answers it. */
+#define MT_QUERY_PROTOCOL_VERSION 1
 
 typedef struct mt_query mt_query;
 

@@ -367,12 +367,24 @@ static int query_mode(mt_query *q, const char *args, char *out, size_t size)
 {
     char word[32];
     mt_mode m;
-    if (sscanf(args, " %31s", word) != 1 || mt_mode_parse(word, &m) != 0)
+    int end = 0;
+    if (sscanf(args, " %31s%n", word, &end) != 1 || !only_space(args + end) || mt_mode_parse(word, &m) != 0)
         return fail_msg(out, size, "mode: pbrt-v2 or corrected");
     q->mode = m;
     mt_state_set_mode(q->state, m);
     q->dirty = 1;
     return answer(out, size, "ok");
+}
+
+/* The protocol's version (docs/PROTOCOL.md), materia's, and the precision
+ * whose formatting the numbers follow: a client checks them before it
+ * relies on an answer's shape. */
+static int query_version(mt_query *q, const char *args, char *out, size_t size)
+{
+    (void)q;
+    if (!only_space(args)) return fail_msg(out, size, "version: takes no arguments");
+    return answer(out, size, "protocol %d materia %s precision %s", MT_QUERY_PROTOCOL_VERSION, MT_VERSION,
+                  MT_USE_DOUBLE ? "double" : "float");
 }
 
 static int dispatch(mt_query *q, const char *line, char *out, size_t size)
@@ -382,7 +394,7 @@ static int dispatch(mt_query *q, const char *line, char *out, size_t size)
         int (*fn)(mt_query *, const char *, char *, size_t);
     } queries[] = {{"mode", query_mode},     {"at", query_at},         {"eval", query_eval},
                    {"sample", query_sample}, {"rho", query_rho},       {"bssrdf", query_bssrdf},
-                   {"shading", query_shading}, {"texture", query_texture}};
+                   {"shading", query_shading}, {"texture", query_texture}, {"version", query_version}};
     const char *s = line;
     size_t len = 0, i;
     while (isspace((unsigned char)*s)) s++;

@@ -1,0 +1,199 @@
+/*
+ * The query protocol (docs/PROTOCOL.md) rule by rule: which lines are
+ * answered and which are not, the version line, the shapes of answers and
+ * errors, line numbers in errors, the atomic "at", where an error is
+ * reported, and numbers that read back to the very values materia computed.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "materia.h"
+#include "materia/query.h"
+#include "support/check.h"
+
+/* Feeds the lines of script (separated by '\n') and the end of input, and
+ * joins the answers with '\n' into got. */
+static void run(const char *script, char *got, size_t size)
+{
+    mt_error err;
+    mt_query *q = mt_query_create(NULL, &err);
+    char line[1024], out[4096];
+    const char *s = script;
+    size_t used = 0;
+    got[0] = 0;
+    if (!q) {
+        snprintf(got, size, "(no session: %s)", err.message);
+        return;
+    }
+    while (*s) {
+        const char *e = strchr(s, '\n');
+        size_t n = e ? (size_t)(e - s) : strlen(s);
+        if (n >= sizeof line) n = sizeof line - 1;
+        memcpy(line, s, n);
+        line[n] = 0;
+        if (mt_query_line(q, line, out, sizeof out))
+            used += (size_t)snprintf(got + used, size - used, "%s%s", used ? "\n" : "", out);
+        if (used >= size) used = size - 1;
+        s = e ? e + 1 : s + n;
+    }
+    if (mt_query_finish(q, out, sizeof out)) snprintf(got + used, size - used, "%s%s", used ? "\n" : "", out);
+    mt_query_destroy(q);
+}
+
+/* The answers equal want word by word; numbers (the same in either
+ * precision's formatting) within 1e-6 relative. */
+static int same_answers(const char *got, const char *want)
+{
+    while (*got || *want) {
+        char *eg, *ew;
+        double g = strtod(got, &eg), w = strtod(want, &ew);
+        if (eg != got && ew != want) {
+            if (!(fabs(g - w) <= 1e-6 * fabs(w))) return 0;
+            got = eg;
+            want = ew;
+        } else if (*got++ != *want++) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static void expect(const char *name, const char *script, const char *want)
+{
+    char got[8192];
+    run(script, got, sizeof got);
+    t_check(same_answers(got, want), name, "answers\n%s\nwanted\n%s", got, want);
+}
+
+static void test_version(void)
+{
+    char want[128];
+    snprintf(want, sizeof want, "protocol %d materia %s precision %s", MT_QUERY_PROTOCOL_VERSION, MT_VERSION,
+             MT_USE_DOUBLE ? "double" : "float");
+    expect("query: version answers protocol, materia version and precision", "version", want);
+    expect("query: version takes no arguments", "version 2", "error version: takes no arguments");
+    t_check(MT_QUERY_PROTOCOL_VERSION == 1, "query: protocol version 1 (docs/PROTOCOL.md)", "header says %d",
+            MT_QUERY_PROTOCOL_VERSION);
+}
+
+static void test_lines(void)
+{
+    /* blank lines, comments and an unfinished statement are not answered;
+     * the statement is answered once, on its closing line */
+    expect("query: blank, comment and continued lines give no answer",
+           "\n   \n# a comment\n  # another\nMaterial \"matte\" \"float sigma\" [\n 20\n]\nversion 1",
+           "ok\nerror version: takes no arguments");
+    /* line numbers in errors count every line, answered or not */
+    expect("query: error line numbers count every input line", "\n# c\neval 0 0 1 0 0 1\nMaterial \"nosuch\"",
+           "0.159154937 0.159154937 0.159154937 0.318309873\n"
+           "error <input>:4:1: material type \"nosuch\" unknown");
+    expect("query: end of input inside a statement is one error naming its first line",
+           "mode corrected\nTexture \"t\" \"float\" \"constant\" \"float value\" [ 1",
+           "ok\nerror end of input inside a statement begun on line 2 (unclosed bracket or string)");
+    expect("query: # is no comment on a query line", "eval 0 0 1 0 0 1 # wo = wi",
+           "error eval: needs wox woy woz wix wiy wiz");
+    expect("query: mode takes one word", "mode corrected now\nmode pbrt-v2\nmode nosuch",
+           "error mode: pbrt-v2 or corrected\nok\nerror mode: pbrt-v2 or corrected");
+    expect("query: unknown words are statements to the parser", "evaluate 0 0 1",
+           "error <input>:1:1: unknown directive \"evaluate\"");
+    expect("query: a scene-only statement is refused", "WorldBegin",
+           "error <input>:1:1: WorldBegin is not a statement the query tool takes");
+}
+
+static void test_answers(void)
+{
+    char got[8192];
+    /* pbrt-v2's default material is matte Kd 0.5: f = 0.5/pi, pdf = cos/pi */
+    expect("query: the default material is matte Kd 0.5", "eval 0 0 1 0 0.6 0.8",
+           "0.159154943 0.159154943 0.159154943 0.254647909");
+    expect("query: a failed sample is eight zeros", "sample 0 0 0 0.5 0.5 0.5", "0 0 0 0 0 0 0 0");
+    expect("query: sample checks its uniform numbers", "sample 0 0 1 0.5 1 0.5",
+           "error sample: uc, u1 and u2 must be in [0, 1)");
+    expect("query: non-finite numbers are refused", "eval 0 0 1 0 0 nan\nrho 0 0 inf",
+           "error eval: needs wox woy woz wix wiy wiz\nerror rho: needs wox woy woz");
+    expect("query: bssrdf of a surface material is none", "Material \"plastic\"\nbssrdf", "ok\nnone");
+    expect("query: subsurface's bssrdf (Ketchup)", "Material \"subsurface\" \"string name\" \"Ketchup\"\nbssrdf",
+           "ok\n0.0610000007 0.970000029 1.45000005 0.180000007 0.0700000003 0.0299999993 1.29999995");
+    /* a name defined as a float and a colour texture: the float answers */
+    expect("query: texture answers one value (float) or three",
+           "Texture \"t\" \"color\" \"constant\" \"rgb value\" [1 0.5 0.25]\ntexture \"t\"\n"
+           "Texture \"t\" \"float\" \"constant\" \"float value\" [0.75]\ntexture \"t\"\ntexture \"u\"",
+           "ok\n1 0.5 0.25\nok\n0.75\nerror texture: no texture named \"u\"");
+    /* at is all or nothing: a bad key leaves the point as it was */
+    expect("query: at is atomic",
+           "at n 0 0.6 0.8\nat n 0 0 1 uv 0.5\nshading",
+           "ok\nerror at: \"uv\" needs 2 finite numbers\n0 0.600000024 0.800000012 1 0 0 0 1 0");
+    /* the light-leak rule uses ng: wo above and wi below it is transmission */
+    expect("query: the geometric normal decides reflection or transmission",
+           "at ng 0 0.8 0.6\neval 0 0 1 0 -0.8 0.6", "ok\n0 0 0 0.190985932");
+    /* a MakeNamedMaterial's material error shows where it is used */
+    expect("query: a named material's error is answered where it is used",
+           "MakeNamedMaterial \"x\" \"string type\" \"nosuch\"\nNamedMaterial \"x\"\neval 0 0 1 0 0 1\n"
+           "rho 0 0 1",
+           "ok\nok\nerror material type \"nosuch\" unknown\nerror material type \"nosuch\" unknown");
+    /* statements before an error on the same line stay applied: glass,
+     * whose first component (uc 0.25) is its specular reflection */
+    run("Material \"glass\" Scale 0 1 1\nsample 0 0 1 0.25 0.5 0.5", got, sizeof got);
+    t_check(!strncmp(got, "error ", 6) && strstr(got, "\n0 0 1 ") && !strcmp(got + strlen(got) - 3, " 17"),
+            "query: statements before an error stay applied", "answers\n%s", got);
+}
+
+/* Every number read back as mt_real is the value materia computed (the
+ * parameters are exact in float, as pbrt-v2 reads them, and in double). */
+static void test_numbers(void)
+{
+    mt_arena *a = mt_arena_create(0);
+    mt_error err;
+    mt_diffgeom dg = mt_diffgeom_default();
+    mt_bsdf *b = mt_bsdf_create(a, MT_MODE_PBRT_V2, &dg, dg.n, 1, &err);
+    mt_vec3 wo = mt_v3_normalize(mt_v3(0.3f, 0.2f, 0.9f)), wi = mt_v3_normalize(mt_v3(-0.5f, 0.1f, 0.4f));
+    mt_bsdf_sample s;
+    mt_rgb f;
+    mt_real pdf;
+    char script[512], got[1024], *p, *end;
+    double v[12];
+    int i, n = 0, same = 1;
+    /* plastic as pbrt-v2 builds it for Kd = 0 (no Lambertian then): a Blinn
+     * microfacet with FresnelDielectric(1.5, 1) */
+    mt_bsdf_add(b, mt_microfacet_create(a, MT_MODE_PBRT_V2, mt_rgb_make(0.25f, 0.5f, 0.75f),
+                                        mt_fresnel_dielectric(1.5f, 1), mt_blinn(1 / (mt_real)0.0625), &err),
+                &err);
+    f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
+    pdf = mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL);
+    s = mt_bsdf_sample_f(b, wo, (mt_real)0.75, (mt_real)0.3, (mt_real)0.7, MT_BSDF_ALL);
+    /* the directions as the query reads them: printed in full, then parsed */
+    snprintf(script, sizeof script,
+             "Material \"plastic\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0.25 0.5 0.75] \"float roughness\" [0.0625]\n"
+             "eval %.17g %.17g %.17g %.17g %.17g %.17g\nsample %.17g %.17g %.17g 0.75 0.3 0.7",
+             (double)wo.x, (double)wo.y, (double)wo.z, (double)wi.x, (double)wi.y, (double)wi.z, (double)wo.x,
+             (double)wo.y, (double)wo.z);
+    run(script, got, sizeof got);
+    p = strchr(got, '\n');
+    for (p = p ? p + 1 : got; n < 12; n++, p = end) {
+        v[n] = strtod(p, &end);
+        if (end == p) break;
+    }
+    if (n == 12) {
+        mt_real want[12];
+        want[0] = f.c[0], want[1] = f.c[1], want[2] = f.c[2], want[3] = pdf;
+        want[4] = s.wi.x, want[5] = s.wi.y, want[6] = s.wi.z;
+        want[7] = s.f.c[0], want[8] = s.f.c[1], want[9] = s.f.c[2], want[10] = s.pdf, want[11] = (mt_real)s.type;
+        for (i = 0; i < 12; ++i)
+            if ((mt_real)v[i] != want[i]) {
+                same = 0;
+                printf("  value %d: answered %.17g, computed %.17g\n", i, v[i], (double)want[i]);
+            }
+    }
+    t_check(n == 12 && same, "query: numbers read back to the computed values bit for bit",
+            "%d numbers in\n%s", n, got);
+    mt_arena_destroy(a);
+}
+
+int main(void)
+{
+    test_version();
+    test_lines();
+    test_answers();
+    test_numbers();
+    return t_status();
+}
