@@ -11,6 +11,7 @@
 #   make demo                  a contact sheet of every material: demo.png
 #   make golden                render the golden images again
 #   make reference             docs/REFERENCE.md from the parameter tables
+#   make vectors               write the published conformance vectors (vectors/)
 #   make install PREFIX=/usr/local DESTDIR=   (make uninstall with the same)
 #
 # CFLAGS, CPPFLAGS and LDFLAGS belong to the user: the flags materia needs are
@@ -134,7 +135,7 @@ SONAME     := lib$(LIBNAME).so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches check check-full other-conformance bench bench-pbrt demo golden install uninstall reference clean distclean help
+.PHONY: FORCE all lib tools tests benches check check-full vectors other-conformance bench bench-pbrt demo golden install uninstall reference clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -193,6 +194,11 @@ $(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
+# the vectors' test reads the conformance suite's catalog of materials
+$(BUILD)/tests/test_vectors: $(BUILD)/obj/tests/test_vectors.o $(BUILD)/obj/conformance/materials.o $(TSUP_OBJ) $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
 $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(LTO_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
@@ -244,6 +250,15 @@ check: all tests $(if $(SANITIZE),,other-conformance)
 
 other-conformance:
 	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= BUILD=$(OTHER_BUILD) $(OTHER_CONF)
+
+# The published conformance vectors (vectors/README.md), written by the
+# float and the double build (vectors/float, vectors/double); make check
+# compares those of its precision with what the build computes.
+vectors:
+	@$(MAKE) --no-print-directory PRECISION=float SANITIZE= BUILD=build/float build/float/tests/test_vectors
+	@$(MAKE) --no-print-directory PRECISION=double SANITIZE= BUILD=build/double build/double/tests/test_vectors
+	build/float/tests/test_vectors --write vectors
+	build/double/tests/test_vectors --write vectors
 
 # The conformance suite with far more samples and finer cells (slow).
 check-full: all tests
@@ -322,7 +337,7 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,17p' Makefile
+	@sed -n '2,19p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
