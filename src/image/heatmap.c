@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include "image/font.h"
+#include "image/heatcolour.h"
 #include "materia/imgcmp.h"
 
 /* An inferno-like scale (after the matplotlib colour map of van der Walt and
@@ -13,8 +14,7 @@
 static const float stops[5][3] = {
     {0, 0, 4}, {87, 16, 110}, {188, 55, 84}, {249, 142, 9}, {252, 255, 164}};
 
-/* The linear RGB colour of t in [0, 1] (NaN and above 1: the top). */
-static void colour(double t, float *rgb)
+void mt__heat_colour(double t, float *rgb)
 {
     double s;
     int i, c;
@@ -38,7 +38,7 @@ static void draw_bar(mt_image *out, int y0, double vmax)
     int x, y;
     for (x = 0; x < out->width; ++x) {
         float rgb[3];
-        colour(out->width > 1 ? (double)x / (out->width - 1) : 1, rgb);
+        mt__heat_colour(out->width > 1 ? (double)x / (out->width - 1) : 1, rgb);
         for (y = y0 + BAR_GAP; y < y0 + BAR_GAP + BAR_STRIP; ++y) {
             float *p = out->data + ((size_t)y * (size_t)out->width + (size_t)x) * 3;
             p[0] = rgb[0];
@@ -78,7 +78,7 @@ mt_status mt_imgcmp_heatmap(const mt_image *blocks, int block, int width, int he
             double v = 0;
             for (c = 0; c < nc; ++c)
                 if (!(fabs(b[c]) <= v)) v = fabs(b[c]);
-            colour(v / vmax, out->data + ((size_t)y * (size_t)width + (size_t)x) * 3);
+            mt__heat_colour(v / vmax, out->data + ((size_t)y * (size_t)width + (size_t)x) * 3);
         }
     if (bar) draw_bar(out, height, vmax);
     return MT_OK;
