@@ -66,7 +66,12 @@ static void ask(impl *m, char (*lines)[160], int n, char (*answers)[ANS])
         {
             static char text[BATCH * 161];
             size_t len = 0;
-            for (j = 0; j < k; ++j) len += (size_t)sprintf(text + len, "%s\n", lines[i + j]);
+            for (j = 0; j < k; ++j) {
+                size_t l = strlen(lines[i + j]);
+                memcpy(text + len, lines[i + j], l);
+                text[len + l] = '\n';
+                len += l + 1;
+            }
             if (!pc_write(&m->child, text, len, err, sizeof err)) die("%s: %s", m->label, err);
         }
         for (j = 0; j < k; ++j)
@@ -121,14 +126,11 @@ static void plane_dir(double a, double phi_o, double *w)
 static void measure(impl *m, const char *mode, const char *statements, const double *wo, double phi_o, long samples,
                     lobe *L)
 {
+    /* static: an error exits from anywhere, and nothing is left allocated */
+    static char lines[BATCH * 8][160], ans[BATCH * 8][ANS], setup[2][160], setup_ans[2][ANS];
     int n = LL_W * LL_H, i, x, y;
-    char (*lines)[160] = malloc(sizeof *lines * BATCH * 8);
-    char (*ans)[ANS] = malloc(sizeof *ans * BATCH * 8);
-    char setup[2][160];
-    char(*setup_ans)[ANS] = malloc(sizeof *setup_ans * 2);
     mt_rng rng;
     long k;
-    if (!lines || !ans || !setup_ans) die("%s%s", "out of memory", "");
     snprintf(setup[0], sizeof setup[0], "mode %s", mode);
     ask(m, setup, 1, setup_ans);
     if (strcmp(setup_ans[0], "ok")) die("%s: mode: %s", m->label, setup_ans[0]);
@@ -212,9 +214,6 @@ static void measure(impl *m, const char *mode, const char *statements, const dou
         double dw = 2 * PI / LL_W * (cos(PI * y / LL_H) - cos(PI * (y + 1) / LL_H));
         for (x = 0; x < LL_W; ++x) L->hist[y][x] = (float)(L->hist[y][x] / ((double)(samples > 0 ? samples : 1) * dw));
     }
-    free(lines);
-    free(ans);
-    free(setup_ans);
 }
 
 /* ---- drawing ------------------------------------------------------------------ */
@@ -362,10 +361,10 @@ int main(int argc, char **argv)
     const char *impl_cmd = NULL, *against = NULL, *mode = "corrected", *out = NULL, *raw = NULL;
     double theta = -1, phi = 0, v, wo[3], timeout = 30;
     long samples = 200000;
-    char *statements;
+    static char *statements; /* static, as m: reachable when an error exits */
     size_t len = 1;
     int i, first = 0, nimpl, rows, r, lines_stmt, width, height, per_line;
-    impl m[2];
+    static impl m[2];
     static lobe L[3];
     mt_image img;
     mt_error err;
