@@ -127,10 +127,11 @@ static void test_answers(void)
     expect("query: the geometric normal decides reflection or transmission",
            "at ng 0 0.8 0.6\neval 0 0 1 0 -0.8 0.6", "ok\n0 0 0 0.190985932");
     /* a MakeNamedMaterial's material error shows where it is used */
-    expect("query: a named material's error is answered where it is used",
+    expect("query: a named material's error is answered at its statement and where it is used",
            "MakeNamedMaterial \"x\" \"string type\" \"nosuch\"\nNamedMaterial \"x\"\neval 0 0 1 0 0 1\n"
            "rho 0 0 1",
-           "ok\nok\nerror material type \"nosuch\" unknown\nerror material type \"nosuch\" unknown");
+           "error <input>:1:1: material type \"nosuch\" unknown\nok\nerror material type \"nosuch\" unknown\n"
+           "error material type \"nosuch\" unknown");
     /* statements before an error on the same line stay applied: glass,
      * whose first component (uc 0.25) is its specular reflection */
     run("Material \"glass\" Scale 0 1 1\nsample 0 0 1 0.25 0.5 0.5", got, sizeof got);

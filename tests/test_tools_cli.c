@@ -15,7 +15,8 @@
 #include "support/ttools.h"
 
 static const char *const tools[] = {"materia-render", "materia-query", "materia-imgdiff",
-                                    "materia-sheet",  "materia-merl",  "materia-conformance"};
+                                    "materia-sheet",  "materia-merl",  "materia-conformance",
+                                    "materia-lobe"};
 
 static void every_tool(void)
 {

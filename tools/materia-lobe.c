@@ -347,13 +347,14 @@ static int write_raw(const char *prefix, const char *row, const char *what, floa
     return 1;
 }
 
-static void usage(void)
+static void usage(FILE *f)
 {
-    fprintf(stderr,
+    fprintf(f,
             "usage: %s [--impl 'COMMAND'] [--against 'COMMAND'] [--mode pbrt-v2|corrected] [--samples N]\n"
             "       [--timeout SECONDS] [--raw PREFIX] --wo THETA PHI -o lobe.png STATEMENTS...\n"
+            "       %s --help | --version\n"
             "THETA and PHI in degrees; the statements (pbrt-v2 scene text, joined with spaces) make the material\n",
-            prog);
+            prog, prog);
 }
 
 int main(int argc, char **argv)
@@ -395,18 +396,21 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "-o") && i + 1 < argc)
             out = argv[++i];
         else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage();
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(a, "--version")) {
+            printf("materia-lobe (materia) %s, %s\n", mt_version(), mt_precision());
             return 0;
         } else if (a[0] == '-' && a[1] == '-') {
             fprintf(stderr, "%s: unknown option \"%s\"\n", prog, a);
-            usage();
+            usage(stderr);
             return 2;
         } else
             first = i--;
     }
     if (!first || !out || theta < 0) {
         fprintf(stderr, "%s: %s\n", prog, !out ? "-o FILE.png is needed" : theta < 0 ? "--wo THETA PHI is needed" : "no statements");
-        usage();
+        usage(stderr);
         return 2;
     }
     for (i = first; i < argc; ++i) len += strlen(argv[i]) + 1;
