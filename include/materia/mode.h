@@ -54,6 +54,7 @@ typedef unsigned mt_mode;
 #define MT_FIX_PFM_ROWS            (1u << 24) /* PFM rows kept in file order: upside down */
 /* Geometry layer, continued */
 #define MT_FIX_SHAPESET_HIT        (1u << 25) /* ShapeSet keeps the last hit; pdf counts one */
+#define MT_FIX_TRIANGLE_HIT_POINT  (1u << 26) /* triangle hit point o + t d, off the plane */
 
 /* Options outside both modes. */
 #define MT_OPT_RADIANCE_TRANSMISSION (1u << 28) /* scale specular transmission by (eta_t/eta_i)^2 */
@@ -68,7 +69,7 @@ typedef unsigned mt_mode;
      MT_FIX_EXR_HALF | MT_FIX_EXR_MISSING_CHANNELS | MT_FIX_PFM_ROWS |                      \
      MT_FIX_LOOP_NORMALS | MT_FIX_DISK_PARTIALS | MT_FIX_NORMAL_DERIVATIVES |                \
      MT_FIX_TRIANGLE_FACING | MT_FIX_PARTIAL_SAMPLING | MT_FIX_QUADRIC_SCALE |               \
-     MT_FIX_SHAPESET_HIT)
+     MT_FIX_SHAPESET_HIT | MT_FIX_TRIANGLE_HIT_POINT)
 
 /* One entry of the errata catalog. bit is 0 for entries that materia fixes in
  * both modes (pbrt-v2 would produce NaN, Inf or memory corruption there). */

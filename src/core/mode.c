@@ -103,6 +103,12 @@ static const mt_erratum errata[] = {
      "counts one point of a primitive along a direction while ShapeSet brings every sample on "
      "that ray to one point (a cylinder light seen from outside: counted once, reached twice)",
      "the closest point; the pdf of a direction sums over every point of the set along it"},
+    {"triangle-hit-point", MT_FIX_TRIANGLE_HIT_POINT, "geometry", "trianglemesh.cpp Triangle::Intersect",
+     "the hit point is ray(t) = o + t d, which float rounding puts up to about |t d| 2^-23 off "
+     "the triangle's plane on either side: a 3D texture whose value changes across the plane "
+     "(a 3D checkerboard on the floor z = 0) takes one side or the other at random",
+     "the barycentric point b0 p0 + b1 p1 + b2 p2 (pbrt-v3), on the plane to within its "
+     "rounding"},
     {"measured-empty", 0, "bxdf",
      "reflection.cpp IrregIsotropicBRDF::f",
      "f returns the clamped weighted sum of the samples divided by the sum of their weights "

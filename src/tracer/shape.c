@@ -305,7 +305,6 @@ int mt_shape_occluded(const mt_shape *s, uint32_t prim, const mt_ray *r)
 void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf)
 {
     const mt_shape *s = hit->shape;
-    (void)r;
     memset(sf, 0, sizeof *sf);
     sf->shape = s;
     sf->prim = hit->prim;
@@ -313,7 +312,7 @@ void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf)
     case MT_SHAPE_SPHERE: mt__sphere_surface(s, hit->pobj, sf); break;
     case MT_SHAPE_DISK: mt__disk_surface(s, hit->pobj, sf); break;
     case MT_SHAPE_CYLINDER: mt__cylinder_surface(s, hit->pobj, sf); break;
-    case MT_SHAPE_TRIANGLES: mt__triangle_surface(s, hit->prim, hit->b1, hit->b2, hit->t, sf); return;
+    case MT_SHAPE_TRIANGLES: mt__triangle_surface(s, hit->prim, hit->b1, hit->b2, hit->t, r, sf); return;
     }
     /* pbrt-v2 quadrics: rayEpsilon = 5e-4 tHit */
     sf->ray_epsilon = (mt_real)5e-4 * hit->t;

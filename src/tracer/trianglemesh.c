@@ -258,7 +258,7 @@ static int unit_d(mt_vec3 v, double out[3])
 }
 
 void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real b2, mt_real t,
-                          mt_surface *sf)
+                          const mt_ray *r, mt_surface *sf)
 {
     const int *v = s->indices + 3 * (size_t)prim;
     mt_vec3 p0 = s->P[v[0]], p1 = s->P[v[1]], p2 = s->P[v[2]];
@@ -298,6 +298,14 @@ void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real 
               mt_fabs(b0 * p0.y) + mt_fabs(b1 * p1.y) + mt_fabs(b2 * p2.y),
               mt_fabs(b0 * p0.z) + mt_fabs(b1 * p1.z) + mt_fabs(b2 * p2.z)),
         mt__gamma(7));
+    if (r && !(s->mode & MT_FIX_TRIANGLE_HIT_POINT)) {
+        /* pbrt-v2 (erratum triangle-hit-point): ray(t), off the plane by the
+         * rounding of o + t d; its error bound grows by that distance from
+         * the barycentric point, so spawned rays still clear the surface */
+        mt_vec3 pr = mt_v3_add(r->o, mt_v3_scale(r->d, t)), off = mt_v3_sub(pr, dg->p);
+        sf->p_error = mt_v3_add(sf->p_error, mt_v3(mt_fabs(off.x), mt_fabs(off.y), mt_fabs(off.z)));
+        dg->p = pr;
+    }
     dg->u = b0 * uv[0][0] + b1 * uv[1][0] + b2 * uv[2][0];
     dg->v = b0 * uv[0][1] + b1 * uv[1][1] + b2 * uv[2][1];
     dg->dndu = dg->dndv = mt_v3(0, 0, 0);
