@@ -311,16 +311,14 @@ def make_bxdfs(kind, p, corrected):
         kd, sigma = clamp(p["Kd"]), max(0.0, min(90.0, p["sigma"]))
         return [Lambertian(kd) if sigma == 0 else OrenNayar(kd, sigma)]
     if kind == "plastic":
-        kd, ks, out = clamp(p["Kd"]), clamp(p["Ks"]), []
-        if any(kd):
-            out.append(Lambertian(kd))
-        if any(ks):
-            # pbrt-v2 builds FresnelDielectric(1.5, 1); corrected (1, 1.5)
-            eta_i, eta_t = (1.0, 1.5) if corrected else (1.5, 1.0)
-            if BUG == "fresnel":
-                eta_i, eta_t = eta_t, eta_i
-            out.append(BlinnMicrofacet(ks, 1 / p["roughness"], eta_i, eta_t, corrected))
-        return out
+        # both lobes whatever Kd and Ks are, as the reference pbrt-v2 binary
+        # builds them (materia's src/materials/plastic.c)
+        kd, ks = clamp(p["Kd"]), clamp(p["Ks"])
+        # pbrt-v2 builds FresnelDielectric(1.5, 1); corrected (1, 1.5)
+        eta_i, eta_t = (1.0, 1.5) if corrected else (1.5, 1.0)
+        if BUG == "fresnel":
+            eta_i, eta_t = eta_t, eta_i
+        return [Lambertian(kd), BlinnMicrofacet(ks, 1 / p["roughness"], eta_i, eta_t, corrected)]
     return [SpecularMirror(clamp(p["Kr"]))]
 
 
