@@ -122,6 +122,8 @@ TOOLS     := $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
 TESTS     := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCHES   := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 CONF_BIN  := $(BUILD)/bin/materia-conformance
+# a deliberately wrong protocol implementation, for tests/test_impl.c
+IMPL_WRONG := $(BUILD)/tests/impl-wrong
 
 # A double-precision build is another library (its mt_real differs): it is
 # named materia-double (libmateria-double.so.0, materia-double.pc, headers
@@ -141,7 +143,7 @@ FLAGS_STAMP := $(BUILD)/flags
 all: lib tools $(CONF_BIN)
 lib: $(STATIC_LIB) $(SHARED_LIB)
 tools: $(TOOLS)
-tests: $(TESTS) $(CXX_TEST) $(REF_GEN) $(CONF_BIN)
+tests: $(TESTS) $(CXX_TEST) $(REF_GEN) $(CONF_BIN) $(IMPL_WRONG)
 benches: $(BENCHES)
 
 $(CONFIG_H): Makefile $(FLAGS_STAMP)
@@ -189,6 +191,10 @@ $(BUILD)/bin/materia-conformance: $(CONF_OBJ) $(TSUP_OBJ) $(STATIC_LIB)
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(LTO_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
+
+$(IMPL_WRONG): $(BUILD)/obj/tests/impl_wrong.o $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
 $(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
@@ -242,14 +248,16 @@ OTHER_PRECISION := $(if $(filter double,$(PRECISION)),float,double)
 # when BUILD was given (e.g. BUILD=build/clang CC=clang)
 OTHER_BUILD     := $(if $(filter build/$(PRECISION),$(BUILD)),build/$(OTHER_PRECISION),$(BUILD)-$(OTHER_PRECISION))
 OTHER_CONF      := $(OTHER_BUILD)/bin/materia-conformance
+OTHER_QUERY     := $(OTHER_BUILD)/bin/materia-query
 CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
 
 check: all tests $(if $(SANITIZE),,other-conformance)
 	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" REF_GEN="$(REF_GEN)" \
+	    MATERIA_OTHER_QUERY="$(if $(SANITIZE),,$(OTHER_QUERY))" \
 	    sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST)
 
 other-conformance:
-	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= BUILD=$(OTHER_BUILD) $(OTHER_CONF)
+	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= BUILD=$(OTHER_BUILD) $(OTHER_CONF) $(OTHER_QUERY)
 
 # The published conformance vectors (vectors/README.md), written by the
 # float and the double build (vectors/float, vectors/double); make check

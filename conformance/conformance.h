@@ -104,6 +104,36 @@ mt_status cf_reciprocity(const cf_subject *s, mt_mode mode, cf_result *res, mt_e
 mt_status cf_helmholtz(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
 mt_status cf_extremes(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
 
+/* The chi-square over the whole sphere, shared by the suite and --impl:
+ * the cell of a direction (nphi x nz cells, equal area), the integral over
+ * cell c of a 7-component integrand (pdf, f |cos| rgb, f |cos| where the pdf
+ * is 0 rgb) starting from a grid as fine as the cell's share of the n
+ * samples asks (count of them fell in it), and the test itself. */
+int cf_cell_of(const cf_config *cfg, mt_vec3 w);
+mt_status cf_integrate_cell(mt_cubature_fn f, void *ctx, const cf_config *cfg, int c, long count, long n,
+                            double abs_tol, double out[7], double *err_pdf, mt_error *err);
+/* The integrand for a BSDF: wo, with the components of flags. */
+typedef struct cf_bsdf_pass {
+    const mt_bsdf *bsdf;
+    mt_vec3 wo;
+    unsigned flags;
+} cf_bsdf_pass;
+void cf_bsdf_integrand(void *ctx, double phi, double z, double *out);
+/* The extremes grid's directions (cos theta 1 to 0 and below, three phi). */
+int cf_extreme_directions(mt_vec3 *d, int max);
+typedef struct cf_chi2 {
+    double chi2, p;    /* p = -1: a hard failure */
+    long dof;
+    int hard;          /* samples where the expected count is 0 */
+    double hard_count;
+    int hard_cell;
+} cf_chi2;
+/* counts[c] samples in cell c of expected probability pdfc[c]; of n samples
+ * in_cells landed in cells, the others (failed or delta) are one more cell
+ * of probability 1 - integral. */
+void cf_chi2_cells(const cf_config *cfg, const long *counts, const double *pdfc, long n, long in_cells,
+                   double integral, cf_chi2 *out);
+
 /* Checks that are not per subject. */
 void cf_light_leak(cf_rows *rows);
 void cf_material_leak(cf_rows *rows);

@@ -49,6 +49,15 @@ static void note(tally *t, const char *what, const char *cfg)
 static int good_rgb(mt_rgb f) { return mt_rgb_is_finite(f) && mt_rgb_min(f) >= 0; }
 
 /* Evaluates b over the grid and odd directions, counting violations. */
+int cf_extreme_directions(mt_vec3 *d, int max)
+{
+    mt_vec3 all[NDIR];
+    int i;
+    directions(all);
+    for (i = 0; i < (int)NDIR && i < max; ++i) d[i] = all[i];
+    return i;
+}
+
 static void exercise(const mt_bsdf *b, const char *cfg, tally *t)
 {
     static const mt_real us[] = {0, 0.25f, 0.5f, 0.999999f, MT_ONE_MINUS_EPSILON};

@@ -10,6 +10,8 @@
  *   materia-conformance --errata             the measured size of each erratum
  *   materia-conformance --dump FILE          values for the float/double comparison
  *   materia-conformance --ulps OTHER_BINARY  compare with the other precision
+ *   materia-conformance --impl 'COMMAND' ... another implementation, through
+ *                                            the query protocol (impl_main.c)
  *
  * Exit status 0 when every check passes, 1 when one fails, 2 on a wrong
  * command line (an --only that selects nothing included).
@@ -20,6 +22,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "conformance.h"
+#include "impl.h"
 #include "materia/material.h"
 
 typedef struct job {
@@ -278,6 +281,8 @@ int main(int argc, char **argv)
     cf_rows extra = {0, 0, 0};
     const char *ulps_other = NULL;
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
+    for (i = 1; i < argc; ++i)
+        if (!strcmp(argv[i], "--impl")) return cf_impl_main(argc, argv);
     memset(&cfg, 0, sizeof cfg);
     cfg.alpha = 0.01;
     cfg.threads = nproc > 0 ? (int)(nproc > 16 ? 16 : nproc) : 2;

@@ -44,13 +44,9 @@ static double noise_allowance(const cf_subject *s)
     return 3 * e * EPS + 64 * EPS;
 }
 
-typedef struct pass {
-    const mt_bsdf *bsdf;
-    mt_vec3 wo;
-    unsigned flags;
-} pass;
+typedef cf_bsdf_pass pass;
 
-static void cell_integrand(void *ctx, double phi, double z, double *out)
+void cf_bsdf_integrand(void *ctx, double phi, double z, double *out)
 {
     const pass *p = ctx;
     mt_vec3 wi = mt_sphere_direction(phi, z);
@@ -67,7 +63,7 @@ static void cell_integrand(void *ctx, double phi, double z, double *out)
     out[6] = pdf > 0 ? 0 : out[3];
 }
 
-static int cell_of(const cf_config *cfg, mt_vec3 w)
+int cf_cell_of(const cf_config *cfg, mt_vec3 w)
 {
     double phi = atan2(w.y, w.x), z = w.z;
     int ip, iz;
@@ -81,50 +77,105 @@ static int cell_of(const cf_config *cfg, mt_vec3 w)
     return ip * cfg->nz + iz;
 }
 
-/* Integrates pdf and f|cos| over every cell. A cell that received many more
- * samples than the average holds a peak, and starts from a finer grid (see
+/* Integrates the integrand's 7 components (pdf, f |cos| and the part of it
+ * where the pdf is 0) over cell c. A cell that received many more samples
+ * than the average holds a peak, and starts from a finer grid (see
  * mt_cubature_grid for why). */
+mt_status cf_integrate_cell(mt_cubature_fn f, void *ctx, const cf_config *cfg, int c, long count, long n,
+                            double abs_tol, double out[7], double *err_pdf, mt_error *err)
+{
+    int ncell = cfg->nphi * cfg->nz, ip = c / cfg->nz, iz = c % cfg->nz, part, k;
+    int sub = mt_cubature_grid((double)count * ncell / (double)n);
+    double p0 = TWO_PI * ip / cfg->nphi, p1 = TWO_PI * (ip + 1) / cfg->nphi;
+    double z0 = -1 + 2.0 * iz / cfg->nz, z1 = -1 + 2.0 * (iz + 1) / cfg->nz;
+    for (k = 0; k < 7; ++k) out[k] = 0;
+    *err_pdf = 0;
+    /* the horizon splits the middle row: integrate its halves apart */
+    for (part = 0; part < 2; ++part) {
+        double a = z0, b = z1;
+        mt_cubature_result r;
+        mt_status st;
+        if (z0 < 0 && z1 > 0) {
+            if (part == 0)
+                b = 0;
+            else
+                a = 0;
+        } else if (part == 1) {
+            break;
+        }
+        st = mt_cubature(f, ctx, 7, p0, p1, a, b, sub, sub, 1e-7, abs_tol, 225L * 8 * sub * sub, &r, err);
+        if (st) return st;
+        for (k = 0; k < 7; ++k) out[k] += r.value[k];
+        *err_pdf += r.error[0];
+    }
+    return MT_OK;
+}
+
+/* Integrates pdf and f|cos| over every cell. */
 static mt_status integrate_cells(const pass *p, const cf_config *cfg, const long *counts, long n,
                                  double abs_tol, double *pdf_cells, double *fcos, double *gap, double *err_total,
                                  mt_error *err)
 {
-    int ncell = cfg->nphi * cfg->nz, c;
+    int ncell = cfg->nphi * cfg->nz, c, k;
     fcos[0] = fcos[1] = fcos[2] = 0;
     gap[0] = gap[1] = gap[2] = 0;
     *err_total = 0;
     for (c = 0; c < ncell; ++c) {
-        int ip = c / cfg->nz, iz = c % cfg->nz, part;
-        int sub = mt_cubature_grid((double)counts[c] * ncell / (double)n);
-        double p0 = TWO_PI * ip / cfg->nphi, p1 = TWO_PI * (ip + 1) / cfg->nphi;
-        double z0 = -1 + 2.0 * iz / cfg->nz, z1 = -1 + 2.0 * (iz + 1) / cfg->nz;
-        pdf_cells[c] = 0;
-        /* the horizon splits the middle row: integrate its halves apart */
-        for (part = 0; part < 2; ++part) {
-            double a = z0, b = z1;
-            mt_cubature_result r;
-            mt_status st;
-            if (z0 < 0 && z1 > 0) {
-                if (part == 0)
-                    b = 0;
-                else
-                    a = 0;
-            } else if (part == 1) {
-                break;
-            }
-            st = mt_cubature(cell_integrand, (void *)p, 7, p0, p1, a, b, sub, sub, 1e-7, abs_tol,
-                             225L * 8 * sub * sub, &r, err);
-            if (st) return st;
-            pdf_cells[c] += r.value[0];
-            fcos[0] += r.value[1];
-            fcos[1] += r.value[2];
-            fcos[2] += r.value[3];
-            gap[0] += r.value[4];
-            gap[1] += r.value[5];
-            gap[2] += r.value[6];
-            *err_total += r.error[0];
+        double v[7], e;
+        mt_status st = cf_integrate_cell(cf_bsdf_integrand, (void *)p, cfg, c, counts[c], n, abs_tol, v, &e, err);
+        if (st) return st;
+        pdf_cells[c] = v[0];
+        for (k = 0; k < 3; ++k) {
+            fcos[k] += v[1 + k];
+            gap[k] += v[4 + k];
         }
+        *err_total += e;
     }
     return MT_OK;
+}
+
+/* The chi-square of sample counts against expected cell probabilities:
+ * cells below 5 expected pooled, the samples that did not land in a cell
+ * (failed, or a delta lobe's) one more cell whose probability is what the
+ * pdf's integral leaves; a sample in a cell of probability 0 is a hard
+ * failure (p = -1). */
+void cf_chi2_cells(const cf_config *cfg, const long *counts, const double *pdfc, long n, long in_cells,
+                   double integral, cf_chi2 *out)
+{
+    int ncell = cfg->nphi * cfg->nz, c;
+    double chi2 = 0, pool_o = 0, pool_e = 0, e_fail;
+    long bins = 0;
+    memset(out, 0, sizeof *out);
+    for (c = 0; c < ncell; ++c) {
+        double e = pdfc[c] * n, o = (double)counts[c];
+        if (pdfc[c] <= 0 && o > 0) {
+            out->hard = 1;
+            out->hard_count += o;
+            out->hard_cell = c;
+        }
+        if (e < 5) {
+            pool_o += o;
+            pool_e += e;
+        } else {
+            chi2 += (o - e) * (o - e) / e;
+            bins++;
+        }
+    }
+    e_fail = fmax(0, (1 - integral) * n);
+    if (e_fail < 5) {
+        pool_o += n - in_cells;
+        pool_e += e_fail;
+    } else {
+        chi2 += ((n - in_cells) - e_fail) * ((n - in_cells) - e_fail) / e_fail;
+        bins++;
+    }
+    if (pool_e > 0) {
+        chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+        bins++;
+    }
+    out->chi2 = chi2;
+    out->dof = bins - 1;
+    out->p = out->hard ? -1 : bins > 1 ? cf_chi2_pvalue(chi2, (double)(bins - 1)) : 1;
 }
 
 /* Sum of the delta lobes' weights f |cos| (they ignore u1 and u2): each is
@@ -197,7 +248,7 @@ static mt_status one_wo(const cf_subject *s, const mt_bsdf *b, mt_vec3 wo, unsig
                      (double)mt_v3_len(sm.wi) - 1, (double)sm.f.c[0], (double)sm.pdf);
             continue;
         }
-        counts[cell_of(cfg, sm.wi)]++;
+        counts[cf_cell_of(cfg, sm.wi)]++;
         for (k = 0; k < 3; ++k) {
             double w = sm.f.c[k] * fabs(sm.wi.z) / sm.pdf;
             sum[k] += w;
@@ -229,8 +280,6 @@ static mt_status one_wo(const cf_subject *s, const mt_bsdf *b, mt_vec3 wo, unsig
     st->success = (double)succ / n;
     fcos[0] = fcos[1] = fcos[2] = 0;
     if (density) {
-        double chi2 = 0, pool_o = 0, pool_e = 0, e_fail;
-        long bins = 0;
         p.bsdf = b;
         p.wo = wo;
         p.flags = flags;
@@ -239,35 +288,14 @@ static mt_status one_wo(const cf_subject *s, const mt_bsdf *b, mt_vec3 wo, unsig
         st->integral = 0;
         for (c = 0; c < ncell; ++c) st->integral += pdfc[c];
         st->quad_err = cerr;
-        /* chi-square over cells, pooling those below 5 expected */
-        for (c = 0; c < ncell; ++c) {
-            double e = pdfc[c] * n, o = (double)counts[c];
-            if (pdfc[c] <= 0 && o > 0) {
-                st->chi2_p = -1; /* samples where the pdf is zero */
-                snprintf(st->id_what, sizeof st->id_what, "%.0f samples in a cell with Pdf() = 0", o);
-            }
-            if (e < 5) {
-                pool_o += o;
-                pool_e += e;
-            } else {
-                chi2 += (o - e) * (o - e) / e;
-                bins++;
-            }
+        {
+            cf_chi2 x;
+            cf_chi2_cells(cfg, counts, pdfc, n, succ, st->integral, &x);
+            if (x.hard)
+                snprintf(st->id_what, sizeof st->id_what, "%.0f samples in a cell with Pdf() = 0", x.hard_count);
+            st->chi2_p = x.p;
+            st->chi2_dof = x.dof;
         }
-        e_fail = fmax(0, (1 - st->integral) * n);
-        if (e_fail < 5) {
-            pool_o += n - succ;
-            pool_e += e_fail;
-        } else {
-            chi2 += ((n - succ) - e_fail) * ((n - succ) - e_fail) / e_fail;
-            bins++;
-        }
-        if (pool_e > 0) {
-            chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
-            bins++;
-        }
-        st->chi2_dof = bins - 1;
-        if (st->chi2_p >= 0) st->chi2_p = bins > 1 ? cf_chi2_pvalue(chi2, (double)(bins - 1)) : 1;
         st->integral_tol = cf_normal_two_sided_z(cfg->alpha_test) *
                                sqrt(fmax(st->success * (1 - st->success), 1.0 / n) / n) +
                            cerr + noise_allowance(s);

@@ -24,6 +24,7 @@
 #define MATERIA_QUERY_H
 
 #include "materia/error.h"
+#include "materia/bsdf.h"
 #include "materia/params.h"
 
 #ifdef __cplusplus
@@ -54,6 +55,12 @@ MT_API void mt_query_set_warning(mt_query *q, mt_warning_fn warn, void *ctx);
 
 /* At end of input: 1 and an error answer when a statement was left open. */
 MT_API int mt_query_finish(mt_query *q, char *out, size_t size);
+
+/* The BSDF an eval or sample query would use now (the current material at
+ * the current shading point, in the session's mode), made in the caller's
+ * arena; NULL and err when there is no valid material. For a program that
+ * compares its own answers with materia's in-process, without the text. */
+MT_API mt_bsdf *mt_query_bsdf(mt_query *q, mt_arena *arena, mt_error *err);
 
 #ifdef __cplusplus
 }

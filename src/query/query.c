@@ -174,14 +174,19 @@ static const mt_material *material(mt_query *q, mt_error *err)
     return q->material;
 }
 
-static mt_bsdf *bsdf_here(mt_query *q, mt_error *err)
+mt_bsdf *mt_query_bsdf(mt_query *q, mt_arena *arena, mt_error *err)
 {
     const mt_material *m = material(q, err);
     mt_diffgeom geom = q->dg;
     if (!m) return NULL;
     geom.n = q->ng;
+    return mt_material_get_bsdf(m, &geom, &q->dg, arena, err);
+}
+
+static mt_bsdf *bsdf_here(mt_query *q, mt_error *err)
+{
     mt_arena_reset(q->arena);
-    return mt_material_get_bsdf(m, &geom, &q->dg, q->arena, err);
+    return mt_query_bsdf(q, q->arena, err);
 }
 
 /* ---- parsing of query arguments ------------------------------------------- */

@@ -1,0 +1,176 @@
+/*
+ * materia-conformance --impl, proven: materia's own query tool passes in both
+ * modes (and the other precision's, when make check names it in
+ * MATERIA_OTHER_QUERY), and every deliberately wrong implementation of
+ * tests/impl_wrong.c is caught by the check meant to catch it, with the
+ * hostile ones (exit, crash, hang, garbage, too few values, an extra line)
+ * reported as such, without hanging the suite. Runs the reduced set
+ * (--quick) and, for the wrong ones, one configuration each.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char bin[1100], tests_dir[1024];
+static int failures;
+
+/* Runs cmd, returns its exit status and its output (malloc'd). */
+static int run(const char *cmd, char **output)
+{
+    FILE *p = popen(cmd, "r");
+    size_t n = 0, cap = 1 << 16;
+    char *buf = malloc(cap);
+    int st;
+    if (!p || !buf) {
+        free(buf);
+        *output = NULL;
+        return -1;
+    }
+    for (;;) {
+        size_t r;
+        if (n + 4096 > cap) {
+            char *b = realloc(buf, cap *= 2);
+            if (!b) break;
+            buf = b;
+        }
+        r = fread(buf + n, 1, cap - n - 1, p);
+        if (!r) break;
+        n += r;
+    }
+    buf[n] = 0;
+    st = pclose(p);
+    *output = buf;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* A line of out that starts with verdict and contains every word of what. */
+static int has_row(const char *out, const char *verdict, const char *what)
+{
+    const char *l = out;
+    while (l && *l) {
+        const char *e = strchr(l, '\n');
+        size_t len = e ? (size_t)(e - l) : strlen(l);
+        char line[2048];
+        snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line ? len : sizeof line - 1), l);
+        if (!strncmp(line, verdict, strlen(verdict)) && line[strlen(verdict)] == ' ' && strstr(line, what)) return 1;
+        l = e ? e + 1 : NULL;
+    }
+    return 0;
+}
+
+static void show_tail(const char *out)
+{
+    const char *l = out;
+    int shown = 0;
+    while (l && *l && shown < 12) {
+        const char *e = strchr(l, '\n');
+        size_t len = e ? (size_t)(e - l) : strlen(l);
+        if (strncmp(l, "PASS", 4)) {
+            printf("    | %.*s\n", (int)(len > 300 ? 300 : len), l);
+            shown++;
+        }
+        l = e ? e + 1 : NULL;
+    }
+}
+
+/* cmd must exit with status `want`; each of the rows "VERDICT|check text" must be present. */
+static void expect(const char *name, const char *args, int want, const char *const *rows)
+{
+    char cmd[12000], *out = NULL;
+    int st, ok, i;
+    snprintf(cmd, sizeof cmd, "%.1100s/materia-conformance %.8192s 2>&1", bin, args);
+    st = run(cmd, &out);
+    ok = st == want && out;
+    for (i = 0; ok && rows && rows[i]; ++i) {
+        char verdict[16];
+        const char *bar = strchr(rows[i], '|');
+        snprintf(verdict, sizeof verdict, "%.*s", (int)(bar - rows[i]), rows[i]);
+        if (!has_row(out, verdict, bar + 1)) {
+            ok = 0;
+            printf("    missing a row \"%s ... %s\"\n", verdict, bar + 1);
+        }
+    }
+    if (ok && want == 0 && !strstr(out, " passed, 0 failed")) ok = 0;
+    printf("%s impl: %s (exit %d, want %d)\n", ok ? "PASS" : "FAIL", name, st, want);
+    if (!ok) {
+        failures++;
+        printf("    command: %s\n", cmd);
+        if (out) show_tail(out);
+    }
+    free(out);
+}
+
+static void wrong(const char *bug, const char *only, const char *extra, const char *const *rows)
+{
+    char args[8192], name[128];
+    snprintf(args, sizeof args, "--impl '%.1000s/impl-wrong %.100s' --quick --only '%.200s' --threads 2 %.200s", tests_dir, bug, only,
+             extra);
+    snprintf(name, sizeof name, "impl-wrong %s is caught", bug);
+    expect(name, args, 1, rows);
+}
+
+int main(int argc, char **argv)
+{
+    char args[8192];
+    const char *other = getenv("MATERIA_OTHER_QUERY");
+    char *slash;
+    (void)argc;
+    snprintf(tests_dir, sizeof tests_dir, "%.1000s", argv[0]);
+    slash = strrchr(tests_dir, '/');
+    if (slash)
+        *slash = 0;
+    else
+        snprintf(tests_dir, sizeof tests_dir, ".");
+    snprintf(bin, sizeof bin, "%.1000s/../bin", tests_dir);
+
+    /* materia itself, both modes */
+    snprintf(args, sizeof args, "--impl '%s/materia-query' --quick --threads 2", bin);
+    expect("materia-query passes, corrected mode", args, 0, NULL);
+    snprintf(args, sizeof args, "--impl '%s/materia-query' --quick --threads 2 --mode pbrt-v2", bin);
+    expect("materia-query passes, pbrt-v2 mode", args, 0, NULL);
+    if (other && *other && access(other, X_OK) == 0) {
+        snprintf(args, sizeof args, "--impl '%.2000s' --quick --threads 2", other);
+        expect("the other precision's materia-query passes", args, 0, NULL);
+    } else {
+        printf("SKIP impl: the other precision's materia-query (MATERIA_OTHER_QUERY not set: make check sets it)\n");
+    }
+    /* the wrong ones, each caught where it should be */
+    {
+        static const char *const pdf[] = {"FAIL|pdf integral", "FAIL|agree pdf", NULL};
+        static const char *const gain[] = {"FAIL|furnace  ", "FAIL|agree f", NULL};
+        static const char *const recip[] = {"FAIL|reciprocity", NULL};
+        static const char *const other_dir[] = {"FAIL|identity", NULL};
+        static const char *const nan[] = {"FAIL|extremes", NULL};
+        static const char *const colour[] = {"FAIL|agree f", "PASS|identity", "PASS|chi2  ", "PASS|furnace  ",
+                                             "PASS|reciprocity", NULL};
+        static const char *const skewed[] = {"FAIL|chi2  ", "FAIL|chi2 materia", "PASS|identity", NULL};
+        static const char *const gone[] = {"FAIL|exited with status 3", NULL};
+        static const char *const crash[] = {"FAIL|it crashed", NULL};
+        static const char *const hang[] = {"FAIL|hung: no answer within 1 s", NULL};
+        static const char *const garbage[] = {"FAIL|answered garbage", NULL};
+        static const char *const few[] = {"FAIL|answered too few values (3 of 4)", NULL};
+        static const char *const extra[] = {"FAIL|out of step", NULL};
+        wrong("pdf-high", "^matte Kd=1$", "", pdf);
+        wrong("energy-gain", "^matte Kd=1$", "", gain);
+        wrong("nonreciprocal", "^plastic default$", "", recip);
+        wrong("other-dir", "^plastic default$", "", other_dir);
+        wrong("nan-grazing", "^matte Kd=1$", "", nan);
+        wrong("colour", "^plastic default$", "", colour);
+        wrong("skewed", "^plastic default$", "", skewed);
+        wrong("exit", "^plastic default$", "", gone);
+        wrong("crash", "^plastic default$", "", crash);
+        wrong("hang", "^plastic default$", "--timeout 1", hang);
+        wrong("garbage", "^plastic default$", "", garbage);
+        wrong("few", "^plastic default$", "", few);
+        wrong("extra", "^plastic default$", "", extra);
+    }
+    /* usage errors */
+    snprintf(args, sizeof args, "--impl '%s/materia-query' --only 'no such configuration'", bin);
+    expect("--only selecting nothing is a usage error", args, 2, NULL);
+    snprintf(args, sizeof args, "--impl '%s/materia-query' --mode pbrt-v3", bin);
+    expect("an unknown mode is a usage error", args, 2, NULL);
+    expect("--impl without a command is a usage error", "--impl ''", 2, NULL);
+    return failures ? 1 : 0;
+}
