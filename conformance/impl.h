@@ -77,7 +77,14 @@ typedef struct cf_impl_run {
     mt_mode mode;
     const char *data;    /* absolute */
     int nwo_max;         /* incoming directions per side */
+    const char *plots;   /* --plots DIR, or NULL */
+    int plots_all;       /* a picture of every chi-square, not only the failed */
 } cf_impl_run;
+
+/* The picture of one chi-square (impl_plot.c): expected counts, histogram
+ * and |o - e| / sqrt(e) over the cells, labelled, as a PNG. */
+int cf_impl_plot(const char *path, const char *title, const char *subtitle, const char *expected_label,
+                 const cf_config *cfg, const long *counts, const double *pdfc, long n, mt_error *err);
 
 /* The worst queries of a failed check, for the report. */
 #define CI_WORST 3

@@ -26,9 +26,10 @@
  * The tolerance of a comparison with materia: an implementation computing in
  * float differs from the exact answer by its roundings, which act like
  * relative perturbations of a few float epsilons of its inputs and
- * intermediate values. So at every query materia is evaluated at four
- * perturbed copies of the directions (each rotated by up to 4 float
- * epsilons), and the bound is 4 times the largest change this makes, plus
+ * intermediate values. So at every query materia is evaluated with wo, then
+ * wi, rotated by 4 float epsilons four ways (towards +-t1, +-t2, two
+ * directions perpendicular to it), and the bound is 4 times the largest
+ * change this makes, plus
  * 64 float epsilons of the value and 1e-6 of the largest value of the
  * configuration (where a tail underflows in float). A sharp lobe (cos^e) or
  * Fresnel near total internal reflection then gets the wide bound its
@@ -379,24 +380,44 @@ static int ref_cells(const cf_impl *ref, const cf_config *cfg, mt_vec3 wo, const
 }
 
 /* ---- materia's conditioning at a query ---------------------------------- */
-static mt_vec3 perturb(mt_vec3 w, mt_rng *r)
+/* w rotated by 4 float epsilons towards +-t1 (k = 0, 1) or +-t2 (k = 2, 3),
+ * two directions perpendicular to it: every way a rounding can move it. */
+static mt_vec3 perturb(mt_vec3 w, int k)
 {
-    double x = w.x * (1 + 4 * EPSF * (2 * mt_rng_uniform(r) - 1)), y = w.y * (1 + 4 * EPSF * (2 * mt_rng_uniform(r) - 1)),
-           z = w.z * (1 + 4 * EPSF * (2 * mt_rng_uniform(r) - 1)), l = sqrt(x * x + y * y + z * z);
-    x += 4 * EPSF * (2 * mt_rng_uniform(r) - 1) * l;
-    y += 4 * EPSF * (2 * mt_rng_uniform(r) - 1) * l;
-    z += 4 * EPSF * (2 * mt_rng_uniform(r) - 1) * l;
+    double x = w.x, y = w.y, z = w.z, t1[3], t2[3], l, s = (k & 1) ? -4 * EPSF : 4 * EPSF;
+    const double *t;
+    if (fabs(x) < 0.6) { /* t1 = w x e_x */
+        t1[0] = 0;
+        t1[1] = z;
+        t1[2] = -y;
+    } else { /* w x e_y */
+        t1[0] = -z;
+        t1[1] = 0;
+        t1[2] = x;
+    }
+    l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+    if (!(l > 0)) return w;
+    t1[0] /= l;
+    t1[1] /= l;
+    t1[2] /= l;
+    t2[0] = y * t1[2] - z * t1[1];
+    t2[1] = z * t1[0] - x * t1[2];
+    t2[2] = x * t1[1] - y * t1[0];
+    t = k < 2 ? t1 : t2;
+    x += s * t[0];
+    y += s * t[1];
+    z += s * t[2];
     l = sqrt(x * x + y * y + z * z);
-    return l > 0 ? mt_v3((mt_real)(x / l), (mt_real)(y / l), (mt_real)(z / l)) : w;
+    return mt_v3((mt_real)(x / l), (mt_real)(y / l), (mt_real)(z / l));
 }
 
-/* The spread of materia's f and pdf under perturbations of (wo, wi). */
-static void spread(const cf_impl *ref, mt_vec3 wo, mt_vec3 wi, const cf_eval *v, mt_rng *r, double s[4])
+/* The spread of materia's f and pdf when wo or wi moves by 4 epsilons. */
+static void spread(const cf_impl *ref, mt_vec3 wo, mt_vec3 wi, const cf_eval *v, double s[4])
 {
     int j, k;
     for (k = 0; k < 4; ++k) s[k] = 0;
-    for (j = 0; j < 4; ++j) {
-        mt_vec3 a = perturb(wo, r), b = perturb(wi, r);
+    for (j = 0; j < 8; ++j) {
+        mt_vec3 a = j < 4 ? perturb(wo, j) : wo, b = j < 4 ? wi : perturb(wi, j - 4);
         mt_rgb f = mt_bsdf_f(ref->bsdf, a, b, MT_BSDF_ALL);
         double p = mt_bsdf_pdf(ref->bsdf, a, b, MT_BSDF_ALL);
         for (k = 0; k < 3; ++k) s[k] = fmax(s[k], fabs(f.c[k] - v->f[k]));
@@ -422,6 +443,31 @@ static double noise_allowance(const cf_impl_config *c)
 {
     double e = c->lobe_exponent > 1 ? c->lobe_exponent : 1;
     return 3 * e * EPSF + 64 * EPSF;
+}
+
+/* --plots: the picture of a chi-square of wo number w. */
+static void plot(const cf_impl_run *run, const cf_impl_config *c, const char *check, mt_vec3 wo, int w,
+                 const long *counts, const double *pdfc, const cf_chi2 *x, const char *label)
+{
+    char path[4096], slug[128], title[256], sub[256];
+    mt_error err;
+    size_t i, j = 0;
+    if (!run->plots || !(run->plots_all || x->p < run->cfg.alpha_test)) return;
+    for (i = 0; c->name[i] && j < sizeof slug - 1; ++i) {
+        char ch = c->name[i];
+        slug[j++] = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' ? ch : '_';
+    }
+    slug[j] = 0;
+    snprintf(path, sizeof path, "%.3000s/%s-%s-%s-wo%d.png", run->plots, slug,
+             run->mode == MT_MODE_PBRT_V2 ? "pbrt-v2" : "corrected", !strcmp(check, "chi2") ? "chi2" : "chi2-materia", w);
+    snprintf(title, sizeof title, "%.100s, %s: %s, p = %.3g %s %.3g (%s)", c->name,
+             run->mode == MT_MODE_PBRT_V2 ? "pbrt-v2" : "corrected", check, x->p, x->p < run->cfg.alpha_test ? "<" : ">=",
+             run->cfg.alpha_test, x->p < run->cfg.alpha_test ? "FAIL" : "pass");
+    snprintf(sub, sizeof sub, "wo = (%.4f, %.4f, %.4f), %ld samples, %d x %d cells, chi2 %.1f, %ld dof", (double)wo.x,
+             (double)wo.y, (double)wo.z, run->cfg.samples, run->cfg.nphi, run->cfg.nz, x->chi2, x->dof);
+    mt_error_clear(&err);
+    if (cf_impl_plot(path, title, sub, label, &run->cfg, counts, pdfc, run->cfg.samples, &err))
+        fprintf(stderr, "materia-conformance: --plots: %s: %s\n", path, err.message);
 }
 
 /* The sampling checks of one wo. */
@@ -528,6 +574,7 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
         if ((r = impl_cells(test, cfg, wo, counts, n, pdfc, fcos, gap, &cerr))) goto out;
         for (k = 0; k < ncell; ++k) integral += pdfc[k];
         cf_chi2_cells(cfg, counts, pdfc, n, in_cells, integral, &x);
+        plot(run, c, "chi2", wo, w, counts, pdfc, &x, "expected (own pdf)");
         if (x.hard) a->chi_hard = 1;
         if (x.p < a->min_p) {
             a->min_p = x.p;
@@ -541,6 +588,7 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
         if ((r = ref_cells(ref, cfg, wo, counts, n, pdfm))) goto out;
         for (k = 0; k < ncell; ++k) integral_m += pdfm[k];
         cf_chi2_cells(cfg, counts, pdfm, n, in_cells, integral_m, &x);
+        plot(run, c, "chi2 materia", wo, w, counts, pdfm, &x, "expected (materia)");
         if (x.hard) a->chi_ref_hard = 1;
         if (x.p < a->min_p_ref) {
             a->min_p_ref = x.p;
@@ -644,7 +692,7 @@ static int pair_checks(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
     }
     for (i = 0; i < 2 * m; ++i) {
         double s[4], sr[4], ef = 0, ep;
-        spread(ref, a[i], b[i], er + i, &rng, s);
+        spread(ref, a[i], b[i], er + i, s);
         for (k = 0; k < 3; ++k) {
             double t = bound(er[i].f[k], s[k], fmaxv), e = fabs(et[i].f[k] - er[i].f[k]) / t;
             ef = fmax(ef, isfinite(e) ? e : 1e30);
@@ -674,7 +722,7 @@ static int pair_checks(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
             skipped++;
         } else if (i < m && density) {
             double e = 0;
-            spread(ref, a[m + i], b[m + i], er + m + i, &rng, sr);
+            spread(ref, a[m + i], b[m + i], er + m + i, sr);
             for (k = 0; k < 3; ++k) {
                 double t = fmax(bound(er[i].f[k], s[k], fmaxv), bound(er[m + i].f[k], sr[k], fmaxv));
                 double d = fabs(et[i].f[k] - et[m + i].f[k]) / t;
@@ -761,7 +809,7 @@ static int delta_check(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
         int p;
         if (!(sr[i].flags & MT_BSDF_SPECULAR) || !(sr[i].pdf > 0)) continue;
         for (p = 0; p < 4; ++p) {
-            mt_bsdf_sample s = mt_bsdf_sample_f(ref->bsdf, perturb(ws[i], &rng), u[i][0], u[i][1], u[i][2], MT_BSDF_ALL);
+            mt_bsdf_sample s = mt_bsdf_sample_f(ref->bsdf, perturb(ws[i], p), u[i][0], u[i][1], u[i][2], MT_BSDF_ALL);
             if (!(s.pdf > 0) || !(s.type & MT_BSDF_SPECULAR)) continue;
             d = fmax(d, sqrt((s.wi.x - sr[i].wi[0]) * (s.wi.x - sr[i].wi[0]) + (s.wi.y - sr[i].wi[1]) * (s.wi.y - sr[i].wi[1]) +
                              (s.wi.z - sr[i].wi[2]) * (s.wi.z - sr[i].wi[2])));

@@ -142,6 +142,8 @@ static void usage(FILE *f, const char *argv0)
             "  --cells N      N x (N+1) chi-square cells (default 20; --quick 12)\n"
             "  --quick        the reduced set of make check: fewer configurations, directions, samples\n"
             "  --threads N    configurations run at once (default: the number of processors)\n"
+            "  --report FILE  the whole result as JSON (schema in docs/CONFORMANCE-SUITE.md)\n"
+            "  --plots DIR    a PNG for every chi-square that fails (with --plots-all: every one)\n"
             "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n",
             argv0);
 }
@@ -158,6 +160,92 @@ static int rm_data(const char *dir)
     return rmdir(dir);
 }
 
+/* A JSON string: quotes, backslashes and control characters escaped. */
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; ++s) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+static const char *verdict(const cfg_out *o, int k);
+
+/* --report FILE: the whole result as JSON (docs/CONFORMANCE-SUITE.md gives
+ * the schema), written to FILE.tmp and renamed. */
+static int write_report(const char *path, const cf_impl_run *run, const char *mode_name, const cfg_out *out, int n,
+                        int passed, int failed, int xfailed)
+{
+    char tmp[4200];
+    FILE *f;
+    int i, k, j, first = 1;
+    snprintf(tmp, sizeof tmp, "%.4000s.tmp", path);
+    if (!(f = fopen(tmp, "w"))) return -1;
+    fprintf(f, "{\n  \"schema\": \"materia-conformance-impl 1\",\n  \"command\": ");
+    json_str(f, run->command);
+    fprintf(f, ",\n  \"materia\": {\"version\": ");
+    json_str(f, mt_version());
+    fprintf(f, ", \"precision\": ");
+    json_str(f, mt_precision());
+    fprintf(f, "},\n  \"mode\": ");
+    json_str(f, mode_name);
+    fprintf(f,
+            ",\n  \"settings\": {\"samples\": %ld, \"cells\": [%d, %d], \"directions_per_side\": %d, \"alpha\": %g, "
+            "\"tests\": %ld, \"alpha_test\": %.6g, \"timeout\": %g},\n  \"results\": [",
+            run->cfg.samples, run->cfg.nphi, run->cfg.nz, run->nwo_max, run->cfg.alpha, run->cfg.tests,
+            run->cfg.alpha_test, run->timeout);
+    for (i = 0; i < n; ++i) {
+        const cfg_out *o = &out[i];
+        for (k = 0; k < CK_NCHECK + 1; ++k) {
+            const cf_impl_result *r = k < CK_NCHECK ? &o->res[k] : NULL;
+            if (o->protocol ? k != CK_NCHECK : (k == CK_NCHECK || r->ok < 0)) continue;
+            fprintf(f, "%s\n    {\"configuration\": ", first ? "" : ",");
+            first = 0;
+            json_str(f, o->c->name);
+            fprintf(f, ", \"statements\": [");
+            for (j = 0; j < o->nlines; ++j) {
+                if (j) fputs(", ", f);
+                json_str(f, o->lines[j]);
+            }
+            fprintf(f, "], \"check\": ");
+            json_str(f, r ? cf_impl_check_names[k] : "protocol");
+            fprintf(f, ", \"verdict\": ");
+            json_str(f, r ? verdict(o, k) : "FAIL");
+            fprintf(f, ", \"statistic\": ");
+            json_str(f, r ? r->statistic : o->protocol_msg);
+            fprintf(f, ", \"bound\": ");
+            json_str(f, r ? r->bound : "every answer well formed");
+            fprintf(f, ", \"note\": ");
+            json_str(f, r ? r->note : "");
+            fprintf(f, ", \"worst\": [");
+            for (j = 0; r && j < CI_WORST && r->worst[j].query[0]; ++j) {
+                fprintf(f, "%s{\"query\": ", j ? ", " : "");
+                json_str(f, r->worst[j].query);
+                fprintf(f, ", \"expected\": ");
+                json_str(f, r->worst[j].expected);
+                fprintf(f, ", \"got\": ");
+                json_str(f, r->worst[j].got);
+                fprintf(f, ", \"err_over_tol\": %.6g}", r->worst[j].score);
+            }
+            fprintf(f, "]}");
+        }
+    }
+    fprintf(f, "\n  ],\n  \"passed\": %d,\n  \"failed\": %d,\n  \"expected_failures\": %d\n}\n", passed, failed,
+            xfailed);
+    if (fclose(f)) {
+        remove(tmp);
+        return -1;
+    }
+    return rename(tmp, path);
+}
+
 static const char *verdict(const cfg_out *o, int k)
 {
     return o->res[k].ok ? "PASS" : o->xfail[k] ? "XFAIL" : "FAIL";
@@ -166,7 +254,7 @@ static const char *verdict(const cfg_out *o, int k)
 int cf_impl_main(int argc, char **argv)
 {
     cf_impl_run run;
-    const char *only = NULL, *data = NULL, *mode_name = "corrected";
+    const char *only = NULL, *data = NULL, *mode_name = "corrected", *report = NULL;
     int i, n, nsel = 0, quick = 0, threads, t, cells = 0, passed = 0, failed = 0, xfailed = 0, need_data = 0;
     long samples = 0, nproc = sysconf(_SC_NPROCESSORS_ONLN);
     const cf_impl_config *all = cf_impl_configs(&n);
@@ -185,6 +273,9 @@ int cf_impl_main(int argc, char **argv)
         } else if (!strcmp(a, "--quick")) {
             quick = 1;
             continue;
+        } else if (!strcmp(a, "--plots-all")) {
+            run.plots_all = 1;
+            continue;
         }
         if (!v) {
             fprintf(stderr, "%s: %s needs a value\n", argv[0], a);
@@ -200,6 +291,10 @@ int cf_impl_main(int argc, char **argv)
             only = v;
         else if (!strcmp(a, "--data"))
             data = v;
+        else if (!strcmp(a, "--report"))
+            report = v;
+        else if (!strcmp(a, "--plots"))
+            run.plots = v;
         else if (!strcmp(a, "--timeout")) {
             char *e;
             run.timeout = strtod(v, &e);
@@ -244,6 +339,14 @@ int cf_impl_main(int argc, char **argv)
         run.mode = MT_MODE_CORRECTED;
     else {
         fprintf(stderr, "%s: --mode: \"%s\" is neither pbrt-v2 nor corrected\n", argv[0], mode_name);
+        return 2;
+    }
+    if (run.plots_all && !run.plots) {
+        fprintf(stderr, "%s: --plots-all needs --plots DIR\n", argv[0]);
+        return 2;
+    }
+    if (run.plots && mkdir(run.plots, 0777) && errno != EEXIST) {
+        fprintf(stderr, "%s: --plots: cannot make \"%s\": %s\n", argv[0], run.plots, strerror(errno));
         return 2;
     }
     if (only && regcomp(&re, only, REG_EXTENDED | REG_NOSUB)) {
@@ -352,6 +455,10 @@ int cf_impl_main(int argc, char **argv)
                     printf("      worst: %s -> expected %s, got %s (err/tol %.3g)\n", r->worst[w].query,
                            r->worst[w].expected, r->worst[w].got, r->worst[w].score);
         }
+    }
+    if (report && write_report(report, &run, mode_name, p.out, nsel, passed, failed, xfailed)) {
+        fprintf(stderr, "%s: --report: cannot write \"%s\": %s\n", argv[0], report, strerror(errno));
+        failed++;
     }
     for (i = 0; i < nsel; ++i) {
         int j;
