@@ -12,6 +12,7 @@
 #   make golden                render the golden images again
 #   make reference             docs/REFERENCE.md from the parameter tables
 #   make vectors               write the published conformance vectors (vectors/)
+#   make fuzz FUZZ_SECONDS=60  libFuzzer on every reader (clang), N seconds each
 #   make install PREFIX=/usr/local DESTDIR=   (make uninstall with the same)
 #
 # CFLAGS, CPPFLAGS and LDFLAGS belong to the user: the flags materia needs are
@@ -115,6 +116,8 @@ TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 TSUP_SRC  := $(sort $(wildcard tests/support/*.c))
 BENCH_SRC := $(sort $(wildcard bench/*.c))
 
+FUZZ_TARGETS := scene query brdf merl exr png pfm spd
+
 LIB_OBJ   := $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
 CONF_OBJ  := $(CONF_SRC:%.c=$(BUILD)/obj/%.o)
 TSUP_OBJ  := $(TSUP_SRC:%.c=$(BUILD)/obj/%.o)
@@ -124,6 +127,9 @@ BENCHES   := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 CONF_BIN  := $(BUILD)/bin/materia-conformance
 # a deliberately wrong protocol implementation, for tests/test_impl.c
 IMPL_WRONG := $(BUILD)/tests/impl-wrong
+# the fuzz targets with driver.c (make check runs each over its corpus)
+FUZZ_BINS := $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz-%)
+FUZZ_SUP  := $(BUILD)/obj/fuzz/fuzz_util.o
 
 # A double-precision build is another library (its mt_real differs): it is
 # named materia-double (libmateria-double.so.0, materia-double.pc, headers
@@ -137,13 +143,13 @@ SONAME     := lib$(LIBNAME).so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches check check-full vectors other-conformance bench bench-pbrt demo golden install uninstall reference clean distclean help
+.PHONY: FORCE all lib tools tests benches check check-full vectors other-conformance bench bench-pbrt demo golden fuzz install uninstall reference clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
 lib: $(STATIC_LIB) $(SHARED_LIB)
 tools: $(TOOLS)
-tests: $(TESTS) $(CXX_TEST) $(REF_GEN) $(CONF_BIN) $(IMPL_WRONG)
+tests: $(TESTS) $(CXX_TEST) $(REF_GEN) $(CONF_BIN) $(IMPL_WRONG) $(FUZZ_BINS)
 benches: $(BENCHES)
 
 $(CONFIG_H): Makefile $(FLAGS_STAMP)
@@ -205,6 +211,15 @@ $(BUILD)/tests/test_vectors: $(BUILD)/obj/tests/test_vectors.o $(BUILD)/obj/conf
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
+$(BUILD)/fuzz/fuzz-%: $(BUILD)/obj/fuzz/target_%.o $(BUILD)/obj/fuzz/driver.o $(FUZZ_SUP) $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
+# the same targets with libFuzzer's main (make fuzz builds them with clang)
+$(BUILD)/libfuzzer/fuzz-%: $(BUILD)/obj/fuzz/target_%.o $(FUZZ_SUP) $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -fsanitize=fuzzer -o $@ $(filter %.o,$^) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
 $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(LTO_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
@@ -254,7 +269,7 @@ CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
 check: all tests $(if $(SANITIZE),,other-conformance)
 	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" REF_GEN="$(REF_GEN)" \
 	    MATERIA_OTHER_QUERY="$(if $(SANITIZE),,$(OTHER_QUERY))" \
-	    sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST)
+	    sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST) $(FUZZ_BINS)
 
 other-conformance:
 	@$(MAKE) --no-print-directory PRECISION=$(OTHER_PRECISION) SANITIZE= BUILD=$(OTHER_BUILD) $(OTHER_CONF) $(OTHER_QUERY)
@@ -290,6 +305,18 @@ bench-pbrt:
 	$(MAKE) PRECISION=float SANITIZE= BUILD=build/float all
 	BENCH_SPP=$(BENCH_SPP) BENCH_REPEAT=$(BENCH_REPEAT) BENCH_THREADS=$(BENCH_THREADS) \
 	    sh tools/bench-pbrt.sh build/float $(BENCH_GROUPS)
+
+# libFuzzer on each target for FUZZ_SECONDS seconds (docs/FUZZING.md): the
+# library and targets built with clang, ASan, UBSan and libFuzzer's coverage
+# in build/fuzz; new inputs go to build/fuzz/work/TARGET, crashes to
+# build/fuzz/artifacts. Fails when any target found one.
+FUZZ_SECONDS ?= 60
+FUZZ_CC      ?= clang
+FUZZ_BUILD   ?= build/fuzz
+fuzz:
+	$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) SANITIZE=address,undefined \
+	    LTO=no CFLAGS="-O1 -g -fsanitize=fuzzer-no-link" $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/libfuzzer/fuzz-%)
+	sh tools/run-fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 # A contact sheet of every material (golden/scenes) in demo.png.
 demo: all
@@ -345,11 +372,12 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,19p' Makefile
+	@sed -n '2,16p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
-         $(BENCH_SRC:bench/%.c=$(BUILD)/obj/bench/%.d)
+         $(BENCH_SRC:bench/%.c=$(BUILD)/obj/bench/%.d) \
+         $(wildcard $(BUILD)/obj/fuzz/*.d)
 
 # Keep test, tool and benchmark objects (they are intermediate files to make).
 .SECONDARY:

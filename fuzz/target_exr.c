@@ -1,0 +1,3 @@
+/* Fuzz target: the EXR reader. */
+#define FZ_EXT ".exr"
+#include "image_target.h"

@@ -1,0 +1,3 @@
+/* Fuzz target: the PFM reader. */
+#define FZ_EXT ".pfm"
+#include "image_target.h"

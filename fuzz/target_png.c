@@ -1,0 +1,3 @@
+/* Fuzz target: the PNG reader. */
+#define FZ_EXT ".png"
+#include "image_target.h"

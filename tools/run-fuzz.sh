@@ -1,0 +1,29 @@
+#!/bin/sh
+# Runs each libFuzzer target for SECONDS seconds (make fuzz): its seed corpus
+# fuzz/corpus/TARGET read, new inputs written to BUILD/work/TARGET, crashes,
+# leaks and timeouts to BUILD/artifacts/TARGET-*, the log to
+# BUILD/logs/TARGET.log. One line per target with libFuzzer's final figures;
+# exit status 1 when any target found something.
+# usage: run-fuzz.sh BUILD SECONDS TARGET...
+build=$1; secs=$2; shift 2
+found=0
+mkdir -p "$build/artifacts" "$build/logs" || exit 1
+for t in "$@"; do
+    bin=$build/libfuzzer/fuzz-$t
+    mkdir -p "$build/work/$t" || exit 1
+    dict=
+    [ -f "fuzz/dict/$t.dict" ] && dict=-dict=fuzz/dict/$t.dict
+    log=$build/logs/$t.log
+    # shellcheck disable=SC2086
+    "$bin" -max_total_time="$secs" -print_final_stats=1 -timeout=60 -rss_limit_mb=3072 \
+        -malloc_limit_mb=2600 $dict -artifact_prefix="$build/artifacts/$t-" \
+        ${FUZZ_FLAGS:-} "$build/work/$t" "fuzz/corpus/$t" >"$log" 2>&1
+    rc=$?
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    cov=$(grep -o 'cov: [0-9]* ft: [0-9]*' "$log" | tail -1)
+    corp=$(grep -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1)
+    arts=$(ls "$build/artifacts" | grep -c "^$t-")
+    echo "fuzz $t: ${execs:-?} executions in ${secs} s, $cov, $corp, exit $rc, $arts artifacts"
+    if [ "$rc" -ne 0 ] || [ "$arts" -ne 0 ]; then found=1; fi
+done
+[ "$found" -eq 0 ]
