@@ -29,7 +29,10 @@ typedef struct mt_bssrdf {
 } mt_bssrdf;
 
 /* Looks up a named material (MakeNamedMaterial) for the mix material; NULL
- * when there is none. Returns a borrowed pointer. */
+ * when there is none. Returns a borrowed pointer. A lookup that builds the
+ * material and fails (out of memory) may record its error in the mt_error
+ * given to the creator: the mix creator then reports that error, not an
+ * undefined name. */
 typedef const mt_material *(*mt_material_lookup_fn)(void *ctx, const char *name);
 
 typedef struct mt_material_ctx {

@@ -39,6 +39,7 @@ typedef struct png_state {
     png_bytep pixels;      /* the whole decoded image, or one row when writing */
     png_bytepp rows;
     mt_status status;      /* set when an error is materia's, not libpng's */
+    int nomem;             /* an allocation for libpng failed */
     char msg[200];
 } png_state;
 
@@ -59,10 +60,15 @@ static void on_warning(png_structp png, png_const_charp msg)
     (void)msg;
 }
 
+/* An allocation that fails is remembered: libpng then reports it in words
+ * of its own ("Out of memory", "insufficient memory" from zlib), and the
+ * error is MT_ERR_NOMEM whatever they are. */
 static png_voidp on_malloc(png_structp png, png_alloc_size_t n)
 {
-    (void)png;
-    return mt__malloc(n);
+    png_voidp p = mt__malloc(n);
+    png_state *s = png_get_mem_ptr(png);
+    if (!p && s) s->nomem = 1;
+    return p;
 }
 
 static void on_free(png_structp png, png_voidp p)
@@ -179,7 +185,7 @@ mt_status mt__png_read(const char *path, mt_image *img, mt_error *err)
         fclose(s.f);
         return mt_error_set(err, MT_ERR_FORMAT, "%s: not a PNG file (bad signature)", path);
     }
-    s.png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, &s, on_error, on_warning, NULL,
+    s.png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, &s, on_error, on_warning, &s,
                                      on_malloc, on_free);
     if (s.png) s.info = png_create_info_struct(s.png);
     if (s.info) {
@@ -194,6 +200,8 @@ mt_status mt__png_read(const char *path, mt_image *img, mt_error *err)
     mt__free(s.rows);
     fclose(s.f);
     if (ok) return MT_OK;
+    if (s.nomem && s.status == MT_OK)
+        return mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory (libpng: %s)", path, s.msg);
     return mt_error_set(err, s.status != MT_OK ? s.status : MT_ERR_FORMAT, "%s: %s", path, s.msg);
 }
 
@@ -256,7 +264,7 @@ mt_status mt__png_write(const char *path, const mt_image *img, int bits, mt_erro
     s.f = tmp.fp;
     s.pixels = mt__malloc((size_t)img->width * (size_t)img->channels * (size_t)(s.bits / 8));
     if (s.pixels)
-        s.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &s, on_error, on_warning, NULL,
+        s.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &s, on_error, on_warning, &s,
                                           on_malloc, on_free);
     if (s.png) s.info = png_create_info_struct(s.png);
     if (s.info)
@@ -267,7 +275,7 @@ mt_status mt__png_write(const char *path, const mt_image *img, int bits, mt_erro
     mt__free(s.pixels);
     if (!ok) {
         mt__tmpfile_abort(&tmp);
-        return mt_error_set(err, s.info ? MT_ERR_IO : MT_ERR_NOMEM, "%s: %s", path, s.msg);
+        return mt_error_set(err, s.info && !s.nomem ? MT_ERR_IO : MT_ERR_NOMEM, "%s: %s", path, s.msg);
     }
     return mt__tmpfile_commit(&tmp, path, err);
 }

@@ -72,8 +72,12 @@ static mt_material *named(const mt_texparams *tp, const mt_material_ctx *ctx, co
         mt_error_param(err, MT_ERR_INVALID, param, "mix material: no \"string %s\" given", param);
         return NULL;
     }
+    /* a lookup that fails to build the material it found says why in err
+     * (out of memory, nesting too deep): that error is kept */
+    mt_error_clear(err);
     m = ctx->lookup ? ctx->lookup(ctx->lookup_ctx, name) : NULL;
     if (!m) {
+        if (err && err->status != MT_OK) return NULL;
         mt_error_param(err, MT_ERR_NOT_FOUND, param, "mix material: named material \"%s\" undefined", name);
         return NULL;
     }

@@ -553,15 +553,18 @@ mt_status mt_parse_string(const char *text, const char *name, const char *dir, i
                            err);
 }
 
-int mt_parse_incomplete(const char *text)
+int mt__parse_incomplete(const char *text, mt_status *st)
 {
     mt__lexer lx;
     mt__token tok;
     int open = 0, result;
+    *st = MT_OK;
     if (!text) return 0;
     mt__lexer_init(&lx, text, strlen(text), "", 1);
     for (;;) {
-        if (mt__lex(&lx, &tok, NULL) != MT_OK) {
+        mt_status ls = mt__lex(&lx, &tok, NULL);
+        if (ls != MT_OK) {
+            if (ls == MT_ERR_NOMEM) *st = ls;
             result = lx.eof_in_string; /* any other error: complete, and wrong */
             break;
         }
@@ -574,4 +577,10 @@ int mt_parse_incomplete(const char *text)
     }
     mt__lexer_free(&lx);
     return result;
+}
+
+int mt_parse_incomplete(const char *text)
+{
+    mt_status st;
+    return mt__parse_incomplete(text, &st);
 }

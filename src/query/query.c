@@ -14,6 +14,7 @@
 #include "materia/query.h"
 #include "materia/state.h"
 #include "core/alloc.h"
+#include "params/parser_internal.h"
 
 #if MT_USE_DOUBLE
 #define NUM "%.17g"
@@ -412,18 +413,29 @@ static int dispatch(mt_query *q, const char *line, char *out, size_t size)
 int mt_query_line(mt_query *q, const char *line, char *out, size_t size)
 {
     const char *s = line;
-    int r;
+    mt_status st;
+    int r, inc;
     q->line_no++;
     if (q->pending) {
-        /* continue the open statement */
+        /* continue the open statement (dropped when memory runs out) */
         size_t n = strlen(line);
         char *p = mt__realloc(q->pending, q->pending_len + n + 2);
-        if (!p) return fail_msg(out, size, "out of memory");
+        if (!p) {
+            mt__free(q->pending);
+            q->pending = NULL;
+            return fail_msg(out, size, "out of memory");
+        }
         q->pending = p;
         q->pending[q->pending_len++] = '\n';
         memcpy(q->pending + q->pending_len, line, n + 1);
         q->pending_len += n;
-        if (mt_parse_incomplete(q->pending)) return 0;
+        inc = mt__parse_incomplete(q->pending, &st);
+        if (st != MT_OK) {
+            mt__free(q->pending);
+            q->pending = NULL;
+            return fail_msg(out, size, "out of memory");
+        }
+        if (inc) return 0;
         r = statement(q, q->pending, q->pending_line, out, size);
         mt__free(q->pending);
         q->pending = NULL;
@@ -433,7 +445,9 @@ int mt_query_line(mt_query *q, const char *line, char *out, size_t size)
     if (!*s || *s == '#') return 0;
     r = dispatch(q, s, out, size);
     if (r >= 0) return r;
-    if (mt_parse_incomplete(line)) {
+    inc = mt__parse_incomplete(line, &st);
+    if (st != MT_OK) return fail_msg(out, size, "out of memory");
+    if (inc) {
         q->pending = mt__strdup(line);
         if (!q->pending) return fail_msg(out, size, "out of memory");
         q->pending_len = strlen(line);
