@@ -372,7 +372,7 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,16p' Makefile
+	@sed -n '2,19p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
