@@ -136,6 +136,20 @@ FUZZ_SUP  := $(BUILD)/obj/fuzz/fuzz_util.o
 # in include/materia-double, tools materia-*-double) so that both install
 # side by side.
 LIBNAME    := materia$(if $(filter double,$(PRECISION)),-double)
+
+# Embree 3, for bench/embree's side-by-side harness only (make bench): found
+# with pkg-config or, as Debian's libembree-dev ships no .pc file, by its
+# header and -lembree3; absent, the harness is simply not built.
+ifneq ($(filter bench benches bench-pbrt,$(MAKECMDGOALS)),)
+  EMBREE_CFLAGS := $(shell $(PKG_CONFIG) --cflags embree3 2>/dev/null)
+  EMBREE_LIBS   := $(or $(shell $(PKG_CONFIG) --libs embree3 2>/dev/null),-lembree3)
+  EMBREE_OK     := $(shell printf '\043include <embree3/rtcore.h>\nint main(void){rtcReleaseDevice(rtcNewDevice(0));return 0;}\n' | \
+                     $(CC) $(EMBREE_CFLAGS) -x c - -o /dev/null $(EMBREE_LIBS) >/dev/null 2>&1 && echo yes)
+endif
+ifeq ($(EMBREE_OK),yes)
+  BENCHES += $(BUILD)/bench/bvh-embree
+endif
+
 STATIC_LIB := $(BUILD)/libmateria.a
 LTO_LIB    := $(if $(filter yes,$(LTO_OK)),$(BUILD)/obj/libmateria-lto.a,$(STATIC_LIB))
 SHARED_LIB := $(BUILD)/lib$(LIBNAME).so.$(VERSION)
@@ -219,6 +233,11 @@ $(BUILD)/fuzz/fuzz-%: $(BUILD)/obj/fuzz/target_%.o $(BUILD)/obj/fuzz/driver.o $(
 $(BUILD)/libfuzzer/fuzz-%: $(BUILD)/obj/fuzz/target_%.o $(FUZZ_SUP) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -fsanitize=fuzzer -o $@ $(filter %.o,$^) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
+$(BUILD)/obj/bench/embree/%.o: ALL_CPPFLAGS += $(EMBREE_CFLAGS)
+$(BUILD)/bench/bvh-embree: $(BUILD)/obj/bench/embree/bvh_embree.o $(TSUP_OBJ) $(LTO_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(LTO_LIB) $(EMBREE_LIBS) $(MT_LDLIBS) $(LDLIBS)
 
 $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(LTO_LIB)
 	@mkdir -p $(dir $@)
@@ -376,7 +395,7 @@ help:
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
-         $(BENCH_SRC:bench/%.c=$(BUILD)/obj/bench/%.d) \
+         $(BENCH_SRC:bench/%.c=$(BUILD)/obj/bench/%.d) $(BUILD)/obj/bench/embree/bvh_embree.d \
          $(wildcard $(BUILD)/obj/fuzz/*.d)
 
 # Keep test, tool and benchmark objects (they are intermediate files to make).

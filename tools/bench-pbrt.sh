@@ -8,7 +8,8 @@
 # usage: bench-pbrt.sh BUILD [GROUP ...]
 #   GROUP  material (the 11 path-traced material scenes), subsurface (subsurface,
 #          kdsubsurface), real (real-killeroo-simple, real-bunny-measured,
-#          real-metal-teapot, real-ss-envmap); default: all three
+#          real-metal-teapot, real-ss-envmap), bvh (pbrt-v2's BVH build of the
+#          bunny beside materia's, from bench/embree's harness); default: all
 # environment:
 #   BENCH_SPP      samples per pixel for both renderers (default: each scene's own)
 #   BENCH_REPEAT   runs of each renderer per scene (default 3)
@@ -37,17 +38,64 @@ if [ -z "$shared" ] || [ ! -x "$sbs" ] || [ ! -x "$shared/baselines/pbrt-v2/pbrt
 fi
 scenes=$(cd "$shared/reference/scenes" && pwd)
 [ -x "$materia" ] || { echo "bench-pbrt: $materia not built" >&2; exit 1; }
-[ $# -gt 0 ] || set -- material subsurface real
+[ $# -gt 0 ] || set -- material subsurface real bvh
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/materia-bench-pbrt.XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT INT TERM
 status=0
+# bvh_build: pbrt-v2's BVH build (its refinement of the mesh into triangles
+# and BVHAccel's construction) for the bunny, as the difference of the CPU time
+# of two whole processes that parse the same mesh inside ObjectBegin/ObjectEnd,
+# one of them instancing it (pbrt-v2 builds an instance's BVH at
+# ObjectInstance), 1x1 pixel, 1 sample, one thread; medians of BENCH_REPEAT
+# (at least 5) alternating pairs. materia's build of the same mesh is timed by
+# bench/embree's harness (mt_geometry_commit, one thread) in the same minutes.
+bvh_build() {
+    if [ ! -x /usr/bin/time ]; then echo "bench-pbrt: bvh: /usr/bin/time is needed for CPU times; skipped"; return 0; fi
+    for inst in 0 1; do
+        {
+            echo 'Film "image" "integer xresolution" [1] "integer yresolution" [1]'
+            echo 'Sampler "lowdiscrepancy" "integer pixelsamples" [1]'
+            echo 'SurfaceIntegrator "directlighting" Camera "perspective" WorldBegin'
+            echo "ObjectBegin \"mesh\" Include \"$scenes/geometry/bunny.pbrt\" ObjectEnd"
+            [ $inst = 0 ] || echo 'ObjectInstance "mesh"'
+            echo 'WorldEnd'
+        } > "$tmp/bvh$inst.pbrt"
+    done
+    n=${BENCH_REPEAT:-5}; [ "$n" -ge 5 ] || n=5
+    echo "== BVH build of the bunny (69,451 triangles), one thread, CPU time, medians of $n, load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+    : > "$tmp/bvh.times"
+    i=0
+    while [ $i -lt $n ]; do
+        for inst in 1 0; do
+            /usr/bin/time -f "$inst %U %S" -o "$tmp/bvh.t" "$shared/baselines/pbrt-v2/pbrt" --ncores 1 --quiet \
+                --outfile "$tmp/bvh.exr" "$tmp/bvh$inst.pbrt" >/dev/null 2>&1 || { echo "bench-pbrt: pbrt-v2 failed on $tmp/bvh$inst.pbrt"; return 1; }
+            tail -n 1 "$tmp/bvh.t" >> "$tmp/bvh.times"
+        done
+        i=$((i + 1))
+    done
+    pbrt_ms=$(awk '{ t[$1, ++n[$1]] = $2 + $3 }
+        function med(k,   i, j, x, a, m) { m = n[k]; for (i = 1; i <= m; i++) a[i] = t[k, i]
+            for (i = 2; i <= m; i++) { x = a[i]; for (j = i - 1; j >= 1 && a[j] > x; j--) a[j + 1] = a[j]; a[j + 1] = x }
+            return (m % 2) ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2 }
+        END { printf "%.0f", 1000 * (med(1) - med(0)) }' "$tmp/bvh.times")
+    echo "pbrt-v2 BVHAccel (refine + build): $pbrt_ms ms (CPU time with the instance minus without, 10 ms resolution)"
+    harness=$root/$build/bench/bvh-embree
+    if [ -x "$harness" ]; then
+        mat_ms=$(MT_BENCH_PASSES=$n "$harness" --build bunny.pbrt | awk '$1 == "BENCH" && $2 ~ /build.materia/ { print $3 }')
+        echo "materia mt_geometry_commit: $mat_ms ms; materia/pbrt-v2: $(awk -v a="$mat_ms" -v b="$pbrt_ms" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "-" }')"
+    else
+        echo "materia: no bench/embree harness in $build (built by make bench where Embree is found); its build time is bench/bvh's bvh.build"
+    fi
+}
+
 for group in "$@"; do
+    [ "$group" != bvh ] || { bvh_build || status=1; continue; }
     case $group in
         material) list="matte plastic glass mirror metal shinymetal substrate translucent uber mix measured" ;;
         subsurface) list="subsurface kdsubsurface" ;;
         real) list="real-killeroo-simple real-bunny-measured real-metal-teapot real-ss-envmap" ;;
-        *) echo "bench-pbrt: unknown group '$group' (material, subsurface, real)" >&2; exit 2 ;;
+        *) echo "bench-pbrt: unknown group '$group' (material, subsurface, real, bvh)" >&2; exit 2 ;;
     esac
     ok=
     for s in $list; do
