@@ -56,6 +56,11 @@ DEP_LIBS   := -L$(EXR_LIBDIR) -lOpenEXRCore$(EXR_SUFFIX) $(PNG_LIBS)
 MT_WARN    := -std=c99 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes \
               -Wmissing-prototypes -Wno-unused-parameter
 MT_CFLAGS  := $(MT_WARN) -fPIC -fvisibility=hidden -MMD -MP
+# sqrt and the like compiled as the instruction alone, without the branch
+# and call that would set errno for a negative argument: the same results
+# bit for bit (materia never reads errno after a math function), about 1.7%
+# fewer instructions in a render.
+MT_CFLAGS  += -fno-math-errno
 # The library promises no floating-point exception but inexact and underflow
 # for valid input (checked with fetestexcept). gcc keeps the program's
 # exceptions by default; clang may evaluate both sides of a branch or pad
