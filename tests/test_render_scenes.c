@@ -395,7 +395,8 @@ static void test_broken_scenes(void)
 {
     static const broken cases[] = {
         {OPT "WorldBegin\nVolume \"homogeneous\"\nWorldEnd\n", 3, "Volume"},
-        {OPT "SurfaceIntegrator \"dipolesubsurface\"\nWorldBegin\nWorldEnd\n", 2, "dipolesubsurface"},
+        {OPT "SurfaceIntegrator \"dipolesubsurface\" \"float maxerror\" [-1]\nWorldBegin\nWorldEnd\n", 2, "maxerror"},
+        {OPT "SurfaceIntegrator \"dipolesubsurface\" \"string pointsfile\" \"no-such-points.txt\"\nWorldBegin\nWorldEnd\n", 2, "no-such-points"},
         {OPT "SurfaceIntegrator \"photonmap\"\nWorldBegin\nWorldEnd\n", 2, "photonmap"},
         {OPT "WorldBegin\nObjectBegin \"a\"\nObjectEnd\nWorldEnd\n", 3, "ObjectBegin"},
         {OPT "Shape \"sphere\"\nWorldBegin\nWorldEnd\n", 2, "WorldBegin"},

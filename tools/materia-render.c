@@ -48,6 +48,17 @@ static void progress(void *ctx, double f, double elapsed, double remaining)
     fflush(stderr);
 }
 
+/* The preprocess of dipolesubsurface: one line per stage, redrawn. */
+static void stage(void *ctx, const char *name, double f, long count, double elapsed, double remaining)
+{
+    (void)ctx;
+    fprintf(stderr, "\r%s: %5.1f%%  %ld points  %6.1fs elapsed", name, 100 * f, count, elapsed);
+    if (remaining >= 0 && f < 1) fprintf(stderr, ", %6.1fs left ", remaining);
+    else fputs("               ", stderr);
+    if (f >= 1) fputc('\n', stderr);
+    fflush(stderr);
+}
+
 static int fail(const mt_error *err)
 {
     char buf[1024];
@@ -128,7 +139,10 @@ int main(int argc, char **argv)
         return 2;
     }
     o.warn = warn;
-    if (!quiet && isatty(STDERR_FILENO)) o.progress = progress;
+    if (!quiet && isatty(STDERR_FILENO)) {
+        o.progress = progress;
+        o.stage = stage;
+    }
     if (!(s = mt_scene_load(scene, &o, &err))) return fail(&err);
     if (!out) out = mt_scene_filename(s);
     /* a typo in the output path fails now, not after the render */
@@ -158,6 +172,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s: %dx%d, %d spp, %d threads: %.2f s, %.3g samples/s%s -> %s\n", scene,
                 img.width, img.height, stats.spp, stats.threads, stats.seconds,
                 stats.samples_per_second, "", out);
+    if (!quiet && stats.points > 0)
+        fprintf(stderr, "dipolesubsurface: %ld irradiance points, preprocess %.2f s of the %.2f s\n", stats.points,
+                stats.preprocess_seconds, stats.seconds);
     if (stats.rejected || stats.shading_failures)
         fprintf(stderr, "materia-render: %ld samples set to black (NaN, Inf or negative), %ld "
                         "path vertices without a BSDF\n", stats.rejected, stats.shading_failures);

@@ -1,7 +1,7 @@
 /*
  * materia/render.h -- materia's tracer: pbrt-v2 scene files rendered with
  * pbrt-v2's cameras, film, filters, lights and surface integrators (path,
- * directlighting), and materia's materials.
+ * directlighting, dipolesubsurface), and materia's materials.
  *
  *   mt_render_options o;
  *   mt_render_options_default(&o);            -- then o.spp, o.threads, o.mode...
@@ -46,6 +46,16 @@ typedef struct mt_scene mt_scene;
  * four times a second and once at the end; the library never prints. */
 typedef void (*mt_progress_fn)(void *ctx, double fraction, double elapsed, double remaining);
 
+/* Progress of a stage before the image (the dipolesubsurface integrator's
+ * "depositing points" and "computing irradiance"): its name, the fraction
+ * done (for the deposition, the longest run of rejected candidates over the
+ * 2000 that end it, as pbrt-v2 reports it), a count (the points so far; the
+ * points whose irradiance is computed), the seconds since the stage began
+ * and an estimate of those left (negative when unknown). Called from the
+ * thread that called mt_scene_render with progress_ctx. */
+typedef void (*mt_stage_fn)(void *ctx, const char *stage, double fraction, long count, double elapsed,
+                            double remaining);
+
 typedef struct mt_render_options {
     mt_mode mode;          /* materials and textures: MT_MODE_PBRT_V2 (default) or corrected */
     int spp;               /* samples per pixel; 0: the scene's (pbrt-v2's count) */
@@ -56,16 +66,19 @@ typedef struct mt_render_options {
     void *warn_ctx;
     mt_progress_fn progress; /* may be NULL */
     void *progress_ctx;
+    mt_stage_fn stage;       /* may be NULL; called with progress_ctx */
 } mt_render_options;
 
 typedef struct mt_render_stats {
-    double seconds;            /* wall time of the render (loading excluded) */
+    double seconds;            /* wall time of the render, preprocess included (loading excluded) */
     double samples;            /* camera samples traced */
     double samples_per_second;
     int threads;
     int spp;
     long rejected;             /* samples set to black as pbrt-v2 does (NaN, Inf, y < -1e-5) */
     long shading_failures;     /* path vertices whose BSDF could not be built (ended there) */
+    double preprocess_seconds; /* of seconds: the dipolesubsurface preprocess (points, irradiance, octree) */
+    long points;               /* dipolesubsurface: the irradiance points */
 } mt_render_stats;
 
 MT_API void mt_render_options_default(mt_render_options *o);

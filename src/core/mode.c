@@ -109,6 +109,30 @@ static const mt_erratum errata[] = {
      "(a 3D checkerboard on the floor z = 0) takes one side or the other at random",
      "the barycentric point b0 p0 + b1 p1 + b2 p2 (pbrt-v3), on the plane to within its "
      "rounding"},
+    {"dipole-area", MT_FIX_DIPOLE_AREA, "integrator", "surfacepoints.cpp SurfacePointTask::Run",
+     "every irradiance point is given the area pi (d/2)^2 of the disk of diameter "
+     "minsampledistance, but a Poisson-disk set of minimum distance d covers only about half "
+     "the surface with those disks: the areas sum to about half the surface's, and Mo, the "
+     "dipole's multiple scattering, is about half what the points' irradiance gives",
+     "each point gets the area per point of its neighbourhood, pi R^2 over the points within "
+     "R = 3d of it (exact for the cap a ball cuts from a sphere or a plane)"},
+    {"octree-cluster", MT_FIX_OCTREE_CLUSTER, "integrator",
+     "dipolesubsurface.cpp SubsurfaceOctreeNode::InitHierarchy",
+     "a node's irradiance is the plain mean of its children's (or of its points'), whatever "
+     "area each holds, and its position the mean weighted by y(E) alone; the cluster's E times "
+     "its summed area is not the sum of its points' E times area",
+     "both means weighted by area: E is the area-weighted mean, the position weighted by "
+     "area times y(E)"},
+    {"fdr-range", MT_FIX_FDR_RANGE, "integrator", "reflection.h Fdr, dipolesubsurface.cpp",
+     "the polynomial fit of the diffuse Fresnel reflectance is used for every eta: it is 0.0017 "
+     "at eta 1 and exceeds 1 from eta 3.95 on (1.07 at 5), where A = (1 + Fdr) / (1 - Fdr) is "
+     "negative and Fdt = 1 - Fdr < 0: the subsurface light turns negative",
+     "the hemispherical integral of the dielectric Fresnel reflectance (Simpson's rule over "
+     "the transmitted cosine), below 1 for every eta"},
+    {"octree-coincident", 0, "integrator", "dipolesubsurface.cpp SubsurfaceOctreeNode::Insert",
+     "a leaf holds 8 points and splits when a ninth arrives: more than 8 points at one "
+     "position (a points file can hold them) split it without end, until the stack overflows",
+     "below 40 levels a leaf keeps any number of points"},
     {"measured-empty", 0, "bxdf",
      "reflection.cpp IrregIsotropicBRDF::f",
      "f returns the clamped weighted sum of the samples divided by the sum of their weights "

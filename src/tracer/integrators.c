@@ -11,9 +11,14 @@
  *                   transmission followed while depth + 1 < maxdepth, with
  *                   pbrt-v2's ray differentials (core/integrator.cpp
  *                   SpecularReflect, SpecularTransmit)
+ *   dipolesubsurface integrators/dipolesubsurface.cpp: directlighting with
+ *                   every light, the dipole's multiple scattering at
+ *                   surfaces with a BSSRDF (the octree built by dipole.c),
+ *                   specular light followed while depth < maxdepth
  * and SamplerRenderer::Li: rays that leave the scene see the lights' Le.
  */
 #include <string.h>
+#include "materia/bxdf.h"
 #include "tracer/shading.h"
 
 void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, uint64_t seed,
@@ -157,20 +162,53 @@ static mt_rgb specular(mt__thread_ctx *tc, const mt_raydiff *rd, const mt__verte
     return mt_rgb_scale(mt_rgb_mul(bs.f, Li), mt_v3_absdot(wi, n) / bs.pdf);
 }
 
+/* The dipole's multiple scattering at a vertex whose material has a BSSRDF
+ * (pbrt-v2 DipoleSubsurfaceIntegrator::Li): (1/pi) Ft (Fdt Mo), with
+ * Ft = 1 - FresnelDielectric(1, eta)(|wo.n|), Fdt = 1 - Fdr(eta) and Mo the
+ * octree's sum at the shading point. */
+static mt_rgb subsurface(mt__thread_ctx *tc, const mt__vertex *v)
+{
+    const mt__dipole *d = tc->dipole;
+    mt_bssrdf b;
+    mt_rgb sigmap_t, Mo, Ft;
+    mt__diffusion rd;
+    mt_fresnel fr;
+    mt_real fdr;
+    if (!d || !d->root || !mt_material_get_bssrdf(v->info->material, &v->sf.dg, &v->dgs, &b)) return mt_rgb_black();
+    sigmap_t = mt_rgb_add(b.sigma_a, b.sigma_prime_s);
+    if (mt_rgb_is_black(sigmap_t) || !(b.eta > 0)) return mt_rgb_black();
+    if (tc->fdr_valid && tc->fdr_eta == b.eta) {
+        fdr = tc->fdr;
+    } else {
+        fdr = tc->fdr = mt__fdr(b.eta, tc->scene->mode);
+        tc->fdr_eta = b.eta;
+        tc->fdr_valid = 1;
+    }
+    mt__diffusion_init(&rd, b.sigma_a, b.sigma_prime_s, fdr);
+    Mo = mt__dipole_mo(d, v->p, &rd, d->maxerror);
+    fr = mt_fresnel_dielectric(1, b.eta);
+    Ft = mt_rgb_sub(mt_rgb_gray(1), mt_fresnel_evaluate(&fr, mt_v3_absdot(v->wo, v->n)));
+    return mt_rgb_scale(mt_rgb_mul(Ft, Mo), (1 - fdr) / MT_PI);
+}
+
 static mt_rgb direct_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *hit, int depth)
 {
     const mt_scene *s = tc->scene;
     mt__vertex v;
     mt_rgb L;
+    int dipole = s->integrator == MT__INTEGRATOR_DIPOLE;
     if (!mt__vertex_shade(tc, hit, &rd->ray, rd->has_differentials ? rd : NULL, &v))
         return mt_rgb_black();
     L = mt__vertex_le(s, &v);
+    if (dipole) L = mt_rgb_add(L, subsurface(tc, &v));
     if (s->nlights > 0) {
         mt_real unused[2];
         L = mt_rgb_add(L, s->strategy_all ? mt__sample_all_lights(tc, &v, depth)
                                           : mt__sample_one_light(tc, &v, depth, unused));
     }
-    if (depth + 1 < s->maxdepth) {
+    /* directlighting follows specular light while depth + 1 < maxdepth,
+     * dipolesubsurface while depth < maxdepth (pbrt-v2's two tests) */
+    if (depth + (dipole ? 0 : 1) < s->maxdepth) {
         mt_real comps[2], r[2], t[2], ur[3], ut[3];
         mt__vertex_sample(tc, depth, 4, 0, 1, comps);
         mt__vertex_sample(tc, depth, 5, 0, 1, r);

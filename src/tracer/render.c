@@ -30,6 +30,7 @@ typedef struct render_job {
     pthread_mutex_t mu;
     pthread_cond_t buffer_cv, progress_cv;
     long rejected, shading_failures;
+    const mt__dipole *dipole;
 } render_job;
 
 typedef struct worker {
@@ -109,6 +110,7 @@ static void *work(void *arg)
     memset(&tc, 0, sizeof tc);
     tc.scene = job->s;
     tc.arena = w->arena;
+    tc.dipole = job->dipole;
     for (;;) {
         int t, b;
         mt__film_buf *buf;
@@ -235,9 +237,10 @@ mt_status mt_scene_render(const mt_scene *s, const mt_render_options *o, mt_imag
 {
     mt_render_options def;
     render_job job;
+    mt__dipole dip;
     worker *w = NULL;
     int nthreads, started = 0, i;
-    double t0;
+    double t0, t1;
     mt_status st;
     if (!o) {
         mt_render_options_default(&def);
@@ -259,17 +262,28 @@ mt_status mt_scene_render(const mt_scene *s, const mt_render_options *o, mt_imag
         job_free(&job, w, w ? nthreads : 0);
         return st;
     }
+    t0 = now();
+    memset(&dip, 0, sizeof dip);
+    if (s->integrator == MT__INTEGRATOR_DIPOLE) {
+        /* pbrt-v2's Preprocess, once per render: the points depend on the seed */
+        if ((st = mt__dipole_build(s, o, nthreads, &dip, err)) != MT_OK) {
+            mt__dipole_free(&dip);
+            job_free(&job, w, nthreads);
+            return st;
+        }
+        job.dipole = &dip;
+    }
+    t1 = now();
     pthread_mutex_init(&job.mu, NULL);
     pthread_cond_init(&job.buffer_cv, NULL);
     pthread_cond_init(&job.progress_cv, NULL);
-    t0 = now();
     for (i = 0; i < nthreads; ++i)
         if (pthread_create(&w[i].thread, NULL, work, &w[i]) == 0) started++;
         else break;
     if (started == 0) {
         st = mt_error_set(err, MT_ERR_LIMIT, "cannot start a render thread");
     } else {
-        watch(&job, o, t0);
+        watch(&job, o, t1);
         for (i = 0; i < started; ++i) pthread_join(w[i].thread, NULL);
         st = mt__film_develop(&s->film, &job.image, image, variance, err);
     }
@@ -277,6 +291,8 @@ mt_status mt_scene_render(const mt_scene *s, const mt_render_options *o, mt_imag
         double el = now() - t0;
         memset(stats, 0, sizeof *stats);
         stats->seconds = el;
+        stats->preprocess_seconds = t1 - t0;
+        stats->points = dip.npts;
         stats->samples = (double)(s->film.sx1 - s->film.sx0) * (double)(s->film.sy1 - s->film.sy0) *
                          (double)job.spp;
         stats->samples_per_second = el > 0 ? stats->samples / el : 0;
@@ -289,5 +305,6 @@ mt_status mt_scene_render(const mt_scene *s, const mt_render_options *o, mt_imag
     pthread_cond_destroy(&job.buffer_cv);
     pthread_mutex_destroy(&job.mu);
     job_free(&job, w, nthreads);
+    mt__dipole_free(&dip);
     return st;
 }

@@ -18,7 +18,9 @@ mt_status mt_render_write(const char *path, const mt_image *img, const mt_scene 
     attrs[2].name = "materia:mode";
     attrs[2].value = mt_mode_name(s->mode);
     attrs[3].name = "materia:integrator";
-    attrs[3].value = s->integrator == MT__INTEGRATOR_PATH ? "path" : "directlighting";
+    attrs[3].value = s->integrator == MT__INTEGRATOR_PATH     ? "path"
+                      : s->integrator == MT__INTEGRATOR_DIPOLE ? "dipolesubsurface"
+                                                               : "directlighting";
     attrs[4].name = "materia:version";
     attrs[4].value = mt_version();
     return mt_image_write(path, img, attrs, 5, err);

@@ -10,11 +10,12 @@
 #include "materia/material.h"
 #include "materia/render.h"
 #include "tracer/camera.h"
+#include "tracer/dipole.h"
 #include "tracer/film.h"
 #include "tracer/light.h"
 #include "tracer/sampler.h"
 
-typedef enum mt__integrator { MT__INTEGRATOR_PATH, MT__INTEGRATOR_DIRECT } mt__integrator;
+typedef enum mt__integrator { MT__INTEGRATOR_PATH, MT__INTEGRATOR_DIRECT, MT__INTEGRATOR_DIPOLE } mt__integrator;
 
 /* What the renderer attaches to each shape (mt_shape_user). */
 typedef struct mt__prim_info {
@@ -33,7 +34,8 @@ struct mt_scene {
     int round_pow2;      /* the sampler rounds light sample counts up to powers of two */
     mt__integrator integrator;
     int maxdepth;
-    int strategy_all;    /* directlighting: "all" (1) or "one" (0) */
+    int strategy_all;    /* directlighting: "all" (1) or "one" (0); 1 for dipolesubsurface */
+    mt__dipole_params dipole; /* dipolesubsurface */
     mt__light *lights;
     int nlights, cap_lights;
     int *light_samples;  /* per light: samples for strategy "all" (pbrt-v2's RoundSize) */
@@ -70,6 +72,9 @@ typedef struct mt__thread_ctx {
     long shading_failures;
     long rejected;    /* samples set to black (NaN, Inf, negative) */
     mt_error err;     /* scratch for mt_material_get_bsdf */
+    const mt__dipole *dipole; /* dipolesubsurface: the render's points and octree */
+    mt_real fdr_eta, fdr;     /* the last Fdr computed (corrected mode integrates it) */
+    int fdr_valid;
 } mt__thread_ctx;
 
 /* Dimension pairs of a camera sample: the image position, the lens, then

@@ -120,7 +120,7 @@ static mt_status check_option_type(const mt_statement *st, mt_error *err)
     static const char *const filters[] = {"box", "gaussian", "mitchell", "triangle", "sinc", NULL};
     static const char *const samplers[] = {"lowdiscrepancy", "halton", "random", "stratified",
                                            "bestcandidate", "adaptive", NULL};
-    static const char *const surf[] = {"path", "directlighting", NULL};
+    static const char *const surf[] = {"path", "directlighting", "dipolesubsurface", NULL};
     static const char *const surf_v2[] = {"whitted", "photonmap", "exphotonmap", "irradiancecache",
                                           "igi", "ambientocclusion", "useprobes", "diffuseprt",
                                           "glossyprt", NULL};
@@ -136,12 +136,8 @@ static mt_status check_option_type(const mt_statement *st, mt_error *err)
     if (strcmp(d, "Sampler") == 0 && !name_in(t, samplers))
         return fail(err, MT_ERR_UNSUPPORTED, "Sampler \"%s\" unknown%s", t, NULL);
     if (strcmp(d, "SurfaceIntegrator") == 0 && !name_in(t, surf)) {
-        if (strcmp(t, "dipolesubsurface") == 0)
-            return fail(err, MT_ERR_UNSUPPORTED,
-                        "SurfaceIntegrator \"%s\" is not supported yet (subsurface scattering "
-                        "comes with the next issue); materia renders path and directlighting%s", t, NULL);
         return fail(err, MT_ERR_UNSUPPORTED,
-                    name_in(t, surf_v2) ? "SurfaceIntegrator \"%s\" is not supported (path, directlighting)%s"
+                    name_in(t, surf_v2) ? "SurfaceIntegrator \"%s\" is not supported (path, directlighting, dipolesubsurface)%s"
                                         : "SurfaceIntegrator \"%s\" unknown%s", t, NULL);
     }
     if (strcmp(d, "VolumeIntegrator") == 0 && !name_in(t, vol))
@@ -353,6 +349,7 @@ void mt_scene_destroy(mt_scene *s)
     mt__free(s->prims);
     mt__free(s->materials);
     mt__free(s->light_samples);
+    mt__free(s->dipole.file_pts);
     mt__free(s->infinite);
     mt__free(s->filename);
     mt__free(s->sampler_name);

@@ -5,6 +5,7 @@
  * (its pixel sample count), surface and volume integrators, renderer and
  * accelerator, with pbrt-v2's parameter names and defaults.
  */
+#include <stdio.h>
 #include <string.h>
 #include "core/alloc.h"
 #include "tracer/scene_load.h"
@@ -168,6 +169,37 @@ static mt_status build_integrators(mt__loader *ld, mt_error *err)
                                                  "SurfaceIntegrator: maxdepth must be between 0 and 1000 (got %d)", s->maxdepth), err);
     if (strcmp(type, "path") == 0) {
         s->integrator = MT__INTEGRATOR_PATH;
+    } else if (strcmp(type, "dipolesubsurface") == 0) {
+        /* pbrt-v2 CreateDipoleSubsurfaceIntegrator; direct lighting from every
+         * light as UniformSampleAllLights */
+        char points[4096];
+        s->integrator = MT__INTEGRATOR_DIPOLE;
+        s->strategy_all = 1;
+        TRY(o, mt_params_float(o->ps, "maxerror", (mt_real)0.05, &s->dipole.maxerror, err));
+        TRY(o, mt_params_float(o->ps, "minsampledistance", (mt_real)0.25, &s->dipole.min_dist, err));
+        TRY(o, mt_params_filename(o->ps, "pointsfile", "", points, sizeof points, err));
+        if (!(s->dipole.maxerror >= 0) || !mt_is_finite(s->dipole.maxerror))
+            return mt__option_fail(o, mt_error_param(err, MT_ERR_INVALID, "maxerror",
+                                                     "SurfaceIntegrator \"dipolesubsurface\": maxerror must be >= 0 (got %g)", (double)s->dipole.maxerror), err);
+        if (!(s->dipole.min_dist > 0) || !mt_is_finite(s->dipole.min_dist))
+            return mt__option_fail(o, mt_error_param(err, MT_ERR_INVALID, "minsampledistance",
+                                                     "SurfaceIntegrator \"dipolesubsurface\": minsampledistance must be positive (got %g)", (double)s->dipole.min_dist), err);
+        if (points[0]) {
+            mt_status st = mt__dipole_read_points(points, &s->dipole.file_pts, &s->dipole.nfile_pts, err);
+            if (st != MT_OK) {
+                char msg[sizeof err->message];
+                /* a file that cannot be read: at the statement that names it */
+                if (!err->file[0]) {
+                    if (!err->param[0]) snprintf(err->param, sizeof err->param, "pointsfile");
+                    return mt__option_fail(o, st, err);
+                }
+                if (strcmp(err->file, points) != 0) return st;
+                /* the points file's own line, and the statement that named it */
+                snprintf(msg, sizeof msg, "%.300s (read for SurfaceIntegrator \"dipolesubsurface\" at %.150s:%d)", err->message, o->file ? o->file : "", o->line);
+                memcpy(err->message, msg, sizeof msg);
+                return st;
+            }
+        }
     } else {
         s->integrator = MT__INTEGRATOR_DIRECT;
         TRY(o, mt_params_string(o->ps, "strategy", "all", &strategy, err));
