@@ -64,7 +64,7 @@ int main(int argc, char **argv)
         if (!mt_query_line(q, line, ans, sizeof ans)) continue;
         n++;
         if (n == 500) {
-            if (!strcmp(bug, "exit")) return 3;
+            if (!strcmp(bug, "exit")) { mt_query_destroy(q); return 3; }
             if (!strcmp(bug, "crash")) abort();
             if (!strcmp(bug, "hang")) {
                 fflush(stdout);

@@ -141,7 +141,7 @@ static void materials(void)
             problem("no parameter table", types[i]);
             continue;
         }
-        memcpy(slots, ops->slots, (size_t)ops->nslots * sizeof *slots);
+        if (ops->nslots) memcpy(slots, ops->slots, (size_t)ops->nslots * sizeof *slots);
         if (ops->defaults) ops->defaults(slots);
         emit("### %s\n\n| parameter | kind | default | range | what |\n|---|---|---|---|---|\n", types[i]);
         for (j = 0; j < ops->nslots; ++j) {
