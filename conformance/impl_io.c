@@ -36,11 +36,16 @@ static void put(cf_impl *im, const char *fmt, ...)
 {
     va_list ap;
     int n;
-    if (grow(im, 512)) return;
+    /* measured first: a statement longer than any fixed reserve (a long
+       parameter list) must reach the child whole, never cut or dropped */
     va_start(ap, fmt);
-    n = vsnprintf(im->text + im->len, im->cap - im->len, fmt, ap);
+    n = vsnprintf(NULL, 0, fmt, ap);
     va_end(ap);
-    if (n > 0 && (size_t)n < im->cap - im->len) im->len += (size_t)n;
+    if (n <= 0 || grow(im, (size_t)n)) return;
+    va_start(ap, fmt);
+    vsnprintf(im->text + im->len, im->cap - im->len, fmt, ap);
+    va_end(ap);
+    im->len += (size_t)n;
 }
 
 static int fail(cf_impl *im, const char *fmt, ...)
