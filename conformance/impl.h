@@ -9,6 +9,7 @@
 
 #include "child.h"
 #include "conformance.h"
+#include "strbuf.h"
 #include "materia/query.h"
 
 /* ---- one implementation: a child process, or materia in-process -------- */
@@ -30,8 +31,7 @@ typedef struct cf_impl {
     const char *mode_line; /* "mode corrected": ends each batch (answered ok) */
     char msg[800];       /* the protocol failure, when failed */
     int failed;
-    char *text;          /* the batch being written */
-    size_t len, cap;
+    cf_strbuf text;      /* the batch being written */
     const char **ans;
     int ans_cap;
     long queries;        /* answered so far */

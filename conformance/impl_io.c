@@ -7,46 +7,11 @@
  * that is not what the query asks for names the query.
  */
 #include <ctype.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "impl.h"
-
-static int grow(cf_impl *im, size_t more)
-{
-    if (im->len + more + 1 > im->cap) {
-        size_t nc = im->cap ? im->cap : 1 << 16;
-        char *p;
-        while (nc < im->len + more + 1) nc *= 2;
-        if (!(p = realloc(im->text, nc))) return -1;
-        im->text = p;
-        im->cap = nc;
-    }
-    return 0;
-}
-
-static void put(cf_impl *im, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-#include <stdarg.h>
-static void put(cf_impl *im, const char *fmt, ...)
-{
-    va_list ap;
-    int n;
-    /* measured first: a statement longer than any fixed reserve (a long
-       parameter list) must reach the child whole, never cut or dropped */
-    va_start(ap, fmt);
-    n = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (n <= 0 || grow(im, (size_t)n)) return;
-    va_start(ap, fmt);
-    vsnprintf(im->text + im->len, im->cap - im->len, fmt, ap);
-    va_end(ap);
-    im->len += (size_t)n;
-}
 
 static int fail(cf_impl *im, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -63,17 +28,33 @@ static int fail(cf_impl *im, const char *fmt, ...)
     return -1;
 }
 
+/* Appends to the batch; out of memory fails the implementation (its
+ * queries would otherwise go missing from the batch unnoticed). */
+static void put(cf_impl *im, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static void put(cf_impl *im, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    cf_strbuf_vprintf(&im->text, fmt, ap); /* a failure stays in text.failed: send() reports it */
+    va_end(ap);
+}
+
 /* Sends the batch in im->text (n query lines, then the mode line). */
 static int send(cf_impl *im, int n)
 {
     put(im, "%s\n", im->mode_line);
+    if (im->text.failed) return fail(im, "out of memory for a batch of %d queries", n);
     if (im->ans_cap < n + 1) {
         const char **a = realloc(im->ans, (size_t)(n + 1) * sizeof *a);
         if (!a) return fail(im, "out of memory");
         im->ans = a;
         im->ans_cap = n + 1;
     }
-    if (cf_child_batch(&im->child, im->text, im->len, n + 1, im->ans)) return fail(im, "%s", im->child.msg);
+    if (cf_child_batch(&im->child, im->text.s, im->text.n, n + 1, im->ans)) return fail(im, "%s", im->child.msg);
     im->queries += n;
     if (strcmp(im->ans[n], "ok"))
         return fail(im, "answers out of step: \"%.100s\" to \"%s\" at the end of a batch of %d queries (an extra or a "
@@ -157,7 +138,7 @@ int cf_impl_open(cf_impl *im, const char *command, double timeout, mt_mode mode,
             shorten(i ? lines[i - 1] : im->mode_line, q, sizeof q);
             return bad_answer(im, q, im->ans[i], "not \"ok\"");
         }
-    im->len = 0;
+    cf_strbuf_clear(&im->text);
     return 0;
 }
 
@@ -173,7 +154,7 @@ int cf_impl_eval(cf_impl *im, int n, const mt_vec3 *wo, const mt_vec3 *wi, cf_ev
         }
         return 0;
     }
-    im->len = 0;
+    cf_strbuf_clear(&im->text);
     for (i = 0; i < n; ++i)
         put(im, "eval %.9g %.9g %.9g %.9g %.9g %.9g\n", (double)(float)wo[i].x, (double)(float)wo[i].y,
             (double)(float)wo[i].z, (double)(float)wi[i].x, (double)(float)wi[i].y, (double)(float)wi[i].z);
@@ -209,7 +190,7 @@ int cf_impl_sample(cf_impl *im, int n, const mt_vec3 *wo, const float (*u)[3], c
         }
         return 0;
     }
-    im->len = 0;
+    cf_strbuf_clear(&im->text);
     for (i = 0; i < n; ++i)
         put(im, "sample %.9g %.9g %.9g %.9g %.9g %.9g\n", (double)(float)wo[i].x, (double)(float)wo[i].y,
             (double)(float)wo[i].z, (double)u[i][0], (double)u[i][1], (double)u[i][2]);
@@ -248,9 +229,8 @@ int cf_impl_close(cf_impl *im)
         cf_child_free(&im->child);
         r = -1;
     }
-    free(im->text);
+    cf_strbuf_free(&im->text);
     free(im->ans);
-    im->text = NULL;
     im->ans = NULL;
     return r;
 }

@@ -12,14 +12,18 @@
  *   materia-conformance --ulps OTHER_BINARY  compare with the other precision
  *   materia-conformance --impl 'COMMAND' ... another implementation, through
  *                                            the query protocol (impl_main.c)
+ *   materia-conformance --write-data DIR     the files the --impl catalog and
+ *                                            the vectors name (@DATA@)
  *
  * Exit status 0 when every check passes, 1 when one fails, 2 on a wrong
  * command line (an --only that selects nothing included).
  */
+#include <errno.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "conformance.h"
 #include "impl.h"
@@ -258,7 +262,8 @@ static int count_verdicts(const cf_rows *r, cf_verdict v)
 
 static const char usage_text[] =
     "usage: materia-conformance [--full | --lite] [--only TEXT] [--threads N] [--ulps OTHER_BINARY]\n"
-    "       materia-conformance --errata | --dump FILE | --help | --version\n"
+    "       materia-conformance --errata | --dump FILE | --write-data DIR | --help | --version\n"
+    "       materia-conformance --impl 'COMMAND' ... (--impl --help)\n"
     "Runs the physics checks of every BxDF configuration in the catalog, in both modes\n"
     "(docs/CONFORMANCE-SUITE.md).\n"
     "  --full          40 times the samples and 10 times the cells (slow)\n"
@@ -268,6 +273,8 @@ static const char usage_text[] =
     "  --threads N     worker threads, 1 to 16 (default: the processors online)\n"
     "  --ulps OTHER    compare with the other precision's materia-conformance\n"
     "  --errata        the measured size of each pbrt-v2 erratum\n"
+    "  --write-data DIR  writes the files the --impl catalog and vectors/ name as @DATA@ (two\n"
+    "                  spectra and a MERL table) into DIR\n"
     "  --dump FILE     the values the float/double comparison reads\n"
     "Exit status 0 all passed, 1 a check failed, 2 wrong command line.\n";
 
@@ -283,6 +290,18 @@ int main(int argc, char **argv)
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
     for (i = 1; i < argc; ++i)
         if (!strcmp(argv[i], "--impl")) return cf_impl_main(argc, argv);
+    if (argc == 3 && !strcmp(argv[1], "--write-data")) {
+        char msg[512];
+        if (mkdir(argv[2], 0777) && errno != EEXIST) {
+            fprintf(stderr, "materia-conformance: --write-data: cannot make \"%s\": %s\n", argv[2], strerror(errno));
+            return 1;
+        }
+        if (cf_impl_write_data(argv[2], msg, sizeof msg)) {
+            fprintf(stderr, "materia-conformance: --write-data: %s\n", msg);
+            return 1;
+        }
+        return 0;
+    }
     memset(&cfg, 0, sizeof cfg);
     cfg.alpha = 0.01;
     cfg.threads = nproc > 0 ? (int)(nproc > 16 ? 16 : nproc) : 2;

@@ -1,13 +1,15 @@
 /*
  * The published conformance vectors (vectors/, format in vectors/README.md).
  *
- *   test_vectors --write DIR   writes them: DIR/configs.tsv, DIR/points.csv
- *                              and DIR/<precision>/ (make vectors runs it
+ *   test_vectors --write DIR   writes them: DIR/configs.tsv, DIR/points.csv,
+ *                              DIR/data/ and DIR/<precision>/ (make vectors runs it
  *                              in the float and the double build)
  *   test_vectors [DIR]         make check: computes every row again and
  *                              compares it with DIR/<precision> (default:
  *                              vectors/)
  *
+ * The configurations are the --impl catalog's (conformance/impl_catalog.c),
+ * so that the vectors and materia-conformance --impl check the same things.
  * The rows are materia's answers through a query session (docs/PROTOCOL.md),
  * so they are exactly what materia-query answers for the same lines. Writing
  * and checking make the rows the same way: the check compares the inputs as
@@ -18,54 +20,18 @@
  */
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include "../conformance/conformance.h"
+#include <unistd.h>
+#include "../conformance/impl.h"
 #include "materia/query.h"
 #include "support/check.h"
 
 #define FORMAT_VERSION 1
 #define PRECISION_NAME (MT_USE_DOUBLE ? "double" : "float")
 #define PI 3.14159265358979323846
-
-/* ---- a growing text buffer ---------------------------------------------- */
-typedef struct sbuf {
-    char *s;
-    size_t n, cap;
-} sbuf;
-
-static void sb_printf(sbuf *b, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-static void sb_printf(sbuf *b, const char *fmt, ...)
-{
-    va_list ap;
-    int need;
-    va_start(ap, fmt);
-    need = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (need < 0) return;
-    if (b->n + (size_t)need + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 1 << 16;
-        char *s;
-        while (cap < b->n + (size_t)need + 1) cap *= 2;
-        if (!(s = realloc(b->s, cap))) {
-            fprintf(stderr, "test_vectors: out of memory\n");
-            exit(1);
-        }
-        b->s = s;
-        b->cap = cap;
-    }
-    va_start(ap, fmt);
-    vsnprintf(b->s + b->n, b->cap - b->n, fmt, ap);
-    va_end(ap);
-    b->n += (size_t)need;
-}
 
 /* ---- what the vectors hold ------------------------------------------------ */
 /* Shading points: every field of "at" (docs/PROTOCOL.md). 0 is the default
@@ -140,27 +106,40 @@ static void at_line(char *out, size_t size, const vpoint *p)
 }
 
 /* Words as CSV fields (spaces become commas), then a comma. */
-static void csv_answer_part(sbuf *b, const char *ans)
+static void csv_answer_part(cf_strbuf *b, const char *ans)
 {
-    for (; *ans; ++ans) sb_printf(b, "%c", *ans == ' ' ? ',' : *ans);
-    sb_printf(b, ",");
+    for (; *ans; ++ans) cf_strbuf_printf(b, "%c", *ans == ' ' ? ',' : *ans);
+    cf_strbuf_printf(b, ",");
 }
 
 /* An answer as the row's last CSV fields. */
-static void csv_answer(sbuf *b, const char *ans)
+static void csv_answer(cf_strbuf *b, const char *ans)
 {
-    for (; *ans; ++ans) sb_printf(b, "%c", *ans == ' ' ? ',' : *ans);
-    sb_printf(b, "\n");
+    for (; *ans; ++ans) cf_strbuf_printf(b, "%c", *ans == ' ' ? ',' : *ans);
+    cf_strbuf_printf(b, "\n");
 }
 
 /* A row: configuration, point, the two groups of inputs, the answer. */
-static void row(sbuf *b, int c, int pt, const char *in1, const char *in2, const char *ans)
+static void row(cf_strbuf *b, int c, int pt, const char *in1, const char *in2, const char *ans)
 {
-    sb_printf(b, "%d,%d,", c, pt);
+    cf_strbuf_printf(b, "%d,%d,", c, pt);
     csv_answer_part(b, in1);
     if (in2) csv_answer_part(b, in2);
     csv_answer(b, ans);
 }
+
+/* ---- the files ------------------------------------------------------------ */
+enum { F_EVAL, F_SAMPLE, F_RHO, F_BSSRDF, F_SHADING, F_TEXTURE, NFILES };
+static const char *file_names[NFILES] = {"eval.csv", "sample.csv", "rho.csv", "bssrdf.csv", "shading.csv", "texture.csv"};
+static const char *file_headers[NFILES] = {
+    "config,point,wox,woy,woz,wix,wiy,wiz,fr,fg,fb,pdf",
+    "config,point,wox,woy,woz,uc,u1,u2,wix,wiy,wiz,fr,fg,fb,pdf,flags",
+    "config,point,wox,woy,woz,r,g,b",
+    "config,point,has,sa_r,sa_g,sa_b,sps_r,sps_g,sps_b,eta",
+    "config,point,nx,ny,nz,dpdux,dpduy,dpduz,dpdvx,dpdvy,dpdvz",
+    "config,point,name,count,v0,v1,v2"};
+/* leading columns that are inputs (compared as text) */
+static const int file_inputs[NFILES] = {8, 8, 5, 2, 2, 3};
 
 /* The textures a configuration's statements define, in order. */
 static int texture_names(const char *scene, char names[][64], int max)
@@ -178,75 +157,114 @@ static int texture_names(const char *scene, char names[][64], int max)
     return n;
 }
 
-/* ---- the files ------------------------------------------------------------ */
-enum { F_EVAL, F_SAMPLE, F_RHO, F_BSSRDF, F_SHADING, F_TEXTURE, NFILES };
-static const char *file_names[NFILES] = {"eval.csv", "sample.csv", "rho.csv", "bssrdf.csv", "shading.csv", "texture.csv"};
-static const char *file_headers[NFILES] = {
-    "config,point,wox,woy,woz,wix,wiy,wiz,fr,fg,fb,pdf",
-    "config,point,wox,woy,woz,uc,u1,u2,wix,wiy,wiz,fr,fg,fb,pdf,flags",
-    "config,point,wox,woy,woz,r,g,b",
-    "config,point,has,sa_r,sa_g,sa_b,sps_r,sps_g,sps_b,eta",
-    "config,point,nx,ny,nz,dpdux,dpduy,dpduz,dpdvx,dpdvy,dpdvz",
-    "config,point,name,count,v0,v1,v2"};
-/* leading columns that are inputs (compared as text) */
-static const int file_inputs[NFILES] = {8, 8, 5, 2, 2, 3};
+/* ---- the configurations: the --impl catalog (conformance/impl_catalog.c) -- */
+static const cf_impl_config *catalog(int *n) { return cf_impl_configs(n); }
 
-static const cf_subject *catalog(int *n) { return cf_material_subjects(n); }
+static int is_at(const char *line) { return !strncmp(line, "at ", 3); }
 
-static void write_configs(sbuf *b)
+/* A configuration as the vectors give it: its statement lines joined into
+ * one line (one answer, "ok"), and its own "at" lines' keys joined into one
+ * (sent after each point's full "at": the configuration's uv, p or ng win
+ * over the point's). "@DATA@" is replaced by data (NULL: kept). */
+static void config_text(const cf_impl_config *c, const char *data, char *statements, size_t ns, char *at, size_t na)
 {
-    int i, n;
-    const cf_subject *s = catalog(&n);
-    sb_printf(b, "id\tname\texponent\tstatements\n");
-    for (i = 0; i < n; ++i) sb_printf(b, "%d\t%s\t%g\t%s\n", i, s[i].name, s[i].lobe_exponent, s[i].scene);
+    int j;
+    size_t ls = 0, la = 0;
+    statements[0] = at[0] = 0;
+    for (j = 0; j < CI_MAX_LINES && c->lines[j]; ++j) {
+        const char *l = c->lines[j];
+        if (is_at(l)) {
+            la += (size_t)snprintf(at + la, la < na ? na - la : 0, "%s%s", la ? " " : "", l + 3);
+            continue;
+        }
+        if (ls && ls + 1 < ns) statements[ls++] = ' ';
+        for (; *l && ls + 1 < ns; ++l) {
+            if (data && !strncmp(l, "@DATA@", 6)) {
+                ls += (size_t)snprintf(statements + ls, ns - ls, "%s", data);
+                if (ls >= ns) ls = ns - 1;
+                l += 5;
+            } else {
+                statements[ls++] = *l;
+            }
+        }
+        statements[ls] = 0;
+    }
 }
 
-static void write_points(sbuf *b)
+static void write_configs(cf_strbuf *b)
+{
+    int i, n;
+    const cf_impl_config *c = catalog(&n);
+    cf_strbuf_printf(b, "id\tname\texponent\tstatements\tat\n");
+    for (i = 0; i < n; ++i) {
+        char st[4096], at[512];
+        config_text(&c[i], NULL, st, sizeof st, at, sizeof at);
+        cf_strbuf_printf(b, "%d\t%s\t%g\t%s\t%s\n", i, c[i].name, c[i].lobe_exponent, st, at);
+    }
+}
+
+static void write_points(cf_strbuf *b)
 {
     int i;
-    sb_printf(b, "id,px,py,pz,nx,ny,nz,ngx,ngy,ngz,dpdux,dpduy,dpduz,dpdvx,dpdvy,dpdvz,dndux,dnduy,dnduz,dndvx,dndvy,"
+    cf_strbuf_printf(b, "id,px,py,pz,nx,ny,nz,ngx,ngy,ngz,dpdux,dpduy,dpduz,dpdvx,dpdvy,dpdvz,dndux,dnduy,dnduz,dndvx,dndvy,"
                  "dndvz,u,v,dpdxx,dpdxy,dpdxz,dpdyx,dpdyy,dpdyz,dudx,dvdx,dudy,dvdy,flip\n");
     for (i = 0; i < NPOINTS; ++i) {
         char at[1024], *s;
         at_line(at, sizeof at, &points[i]);
-        sb_printf(b, "%d", i);
+        cf_strbuf_printf(b, "%d", i);
         /* the numbers of the at line, in its order */
         for (s = at; *s;) {
             char *e;
             double v = strtod(s, &e);
             if (e != s) {
-                sb_printf(b, ",%.9g", v);
+                cf_strbuf_printf(b, ",%.9g", v);
                 s = e;
             } else {
                 s++;
             }
         }
-        sb_printf(b, "\n");
+        cf_strbuf_printf(b, "\n");
     }
 }
 
-/* Every row of one mode's files, through one session per configuration. */
-static void write_mode(int mode, sbuf files[NFILES])
+/* Every row of one mode's files, through one session per configuration;
+ * data is the directory of the files the statements name. 0, or -1 when a
+ * session could not be made (out of memory, a configuration materia
+ * refuses: the vectors would be incomplete). */
+static int write_mode(int mode, const char *data, cf_strbuf files[NFILES])
 {
-    int c, n, f;
-    const cf_subject *subj = catalog(&n);
-    for (f = 0; f < NFILES; ++f) sb_printf(&files[f], "%s\n", file_headers[f]);
-    for (c = 0; c < n; ++c) {
+    int c, n, f, ok = 1;
+    const cf_impl_config *conf = catalog(&n);
+    for (f = 0; f < NFILES; ++f) cf_strbuf_printf(&files[f], "%s\n", file_headers[f]);
+    for (c = 0; c < n && ok; ++c) {
         mt_error err;
         mt_query *q = mt_query_create(NULL, &err);
-        char line[1024], ans[4096], names[8][64];
-        int pt, i, j, k, ntex = texture_names(subj[c].scene, names, 8);
+        char line[1024], ans[4096], names[8][64], statements[4096], own_at[512];
+        int pt, i, j, k, ntex;
         if (!q) {
             fprintf(stderr, "test_vectors: %s\n", err.message);
-            exit(1);
+            return -1;
         }
+        config_text(&conf[c], data, statements, sizeof statements, own_at, sizeof own_at);
+        ntex = texture_names(statements, names, 8);
         snprintf(line, sizeof line, "mode %s", mode_names[mode]);
         ask(q, line, ans, sizeof ans);
-        ask(q, subj[c].scene, ans, sizeof ans);
-        if (strcmp(ans, "ok")) fprintf(stderr, "test_vectors: %s: %s\n", subj[c].name, ans);
-        for (pt = 0; pt < NPOINTS; ++pt) {
+        ask(q, statements, ans, sizeof ans);
+        if (strcmp(ans, "ok")) {
+            fprintf(stderr, "test_vectors: %s: %s\n", conf[c].name, ans);
+            ok = 0;
+        }
+        for (pt = 0; pt < NPOINTS && ok; ++pt) {
             at_line(line, sizeof line, &points[pt]);
             ask(q, line, ans, sizeof ans);
+            if (own_at[0]) {
+                snprintf(line, sizeof line, "at %s", own_at);
+                ask(q, line, ans, sizeof ans);
+                if (strcmp(ans, "ok")) {
+                    fprintf(stderr, "test_vectors: %s: %s: %s\n", conf[c].name, line, ans);
+                    ok = 0;
+                }
+            }
             if (pt < NBSDF_POINTS)
                 for (i = 0; i < NWO; ++i) {
                     char wo[96];
@@ -283,15 +301,15 @@ static void write_mode(int mode, sbuf files[NFILES])
                     }
                 }
             ask(q, "bssrdf", ans, sizeof ans);
-            sb_printf(&files[F_BSSRDF], "%d,%d,", c, pt);
+            cf_strbuf_printf(&files[F_BSSRDF], "%d,%d,", c, pt);
             if (!strcmp(ans, "none"))
-                sb_printf(&files[F_BSSRDF], "0,,,,,,,\n");
+                cf_strbuf_printf(&files[F_BSSRDF], "0,,,,,,,\n");
             else {
-                sb_printf(&files[F_BSSRDF], "1,");
+                cf_strbuf_printf(&files[F_BSSRDF], "1,");
                 csv_answer(&files[F_BSSRDF], ans);
             }
             ask(q, "shading", ans, sizeof ans);
-            sb_printf(&files[F_SHADING], "%d,%d,", c, pt);
+            cf_strbuf_printf(&files[F_SHADING], "%d,%d,", c, pt);
             csv_answer(&files[F_SHADING], ans);
             for (k = 0; k < ntex; ++k) {
                 int count = 1;
@@ -299,28 +317,72 @@ static void write_mode(int mode, sbuf files[NFILES])
                 snprintf(line, sizeof line, "texture \"%s\"", names[k]);
                 ask(q, line, ans, sizeof ans);
                 for (s = ans; *s; ++s) count += *s == ' ';
-                sb_printf(&files[F_TEXTURE], "%d,%d,%s,%d,", c, pt, names[k], count);
-                if (count == 1) sb_printf(&files[F_TEXTURE], "%s,,\n", ans);
+                cf_strbuf_printf(&files[F_TEXTURE], "%d,%d,%s,%d,", c, pt, names[k], count);
+                if (count == 1) cf_strbuf_printf(&files[F_TEXTURE], "%s,,\n", ans);
                 else csv_answer(&files[F_TEXTURE], ans);
             }
         }
         mt_query_destroy(q);
     }
+    for (f = 0; f < NFILES; ++f)
+        if (files[f].failed) {
+            fprintf(stderr, "test_vectors: out of memory for %s\n", file_names[f]);
+            ok = 0;
+        }
+    return ok ? 0 : -1;
 }
 
-static void write_version(sbuf *b)
+/* ---- the data files (@DATA@) ------------------------------------------------ */
+/* The files the catalog names, written by the suite (cf_impl_write_data):
+ * the spectra are small and published in vectors/data/; the MERL table
+ * (35 MB) is not, materia-conformance --write-data DIR writes it. */
+static const char *const data_files[] = {"eta.spd", "k.spd", "plastic.merl"};
+#define NDATA_PUBLISHED 2
+
+static int make_data(char *dir, size_t n)
 {
-    sb_printf(b, "format %d\nmateria %s\nprotocol %d\nprecision %s\nmodes pbrt-v2 corrected\n", FORMAT_VERSION,
+    char msg[512];
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dir, n, "%s/test_vectors-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(dir)) {
+        fprintf(stderr, "test_vectors: cannot make %s: %s\n", dir, strerror(errno));
+        return -1;
+    }
+    if (cf_impl_write_data(dir, msg, sizeof msg)) {
+        fprintf(stderr, "test_vectors: %s\n", msg);
+        return -1;
+    }
+    return 0;
+}
+
+static void remove_data(const char *dir)
+{
+    char p[4200];
+    size_t i;
+    for (i = 0; i < sizeof data_files / sizeof data_files[0]; ++i) {
+        snprintf(p, sizeof p, "%s/%s", dir, data_files[i]);
+        remove(p);
+    }
+    rmdir(dir);
+}
+
+static void write_version(cf_strbuf *b)
+{
+    cf_strbuf_printf(b, "format %d\nmateria %s\nprotocol %d\nprecision %s\nmodes pbrt-v2 corrected\n", FORMAT_VERSION,
               MT_VERSION, MT_QUERY_PROTOCOL_VERSION, PRECISION_NAME);
 }
 
 /* ---- writing ---------------------------------------------------------------- */
-static int write_file(const char *dir, const char *sub, const char *name, const sbuf *b)
+static int write_file(const char *dir, const char *sub, const char *name, const cf_strbuf *b)
 {
     char path[2048], tmp[2100];
     FILE *f;
     snprintf(path, sizeof path, "%s/%s%s%s", dir, sub, *sub ? "/" : "", name);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    if (b->failed) {
+        fprintf(stderr, "test_vectors: out of memory for %s\n", path);
+        return 0;
+    }
     if (!(f = fopen(tmp, "wb")) || fwrite(b->s, 1, b->n, f) != b->n || fclose(f) != 0 || rename(tmp, path) != 0) {
         fprintf(stderr, "test_vectors: cannot write %s: %s\n", path, strerror(errno));
         return 0;
@@ -339,34 +401,53 @@ static int make_dir(const char *dir, const char *sub)
     return 1;
 }
 
-/* Writes dir/configs.tsv, dir/points.csv (the same from either precision)
- * and dir/PRECISION/: VERSION and a directory of CSV files per mode. */
+static char *read_all(const char *path);
+
+/* The published data file name of dir (the generated data directory) as
+ * a buffer; 0 when it cannot be read. */
+static int data_text(const char *data, const char *name, cf_strbuf *b)
+{
+    char path[4200];
+    char *text;
+    snprintf(path, sizeof path, "%s/%s", data, name);
+    if (!(text = read_all(path))) return 0;
+    cf_strbuf_clear(b);
+    cf_strbuf_printf(b, "%s", text);
+    free(text);
+    return !b->failed;
+}
+
+/* Writes dir/configs.tsv, dir/points.csv, dir/data/ (the published data
+ * files; the same from either precision) and dir/PRECISION/: VERSION and a
+ * directory of CSV files per mode. */
 static int write_all(const char *dir)
 {
-    sbuf b = {0, 0, 0};
-    char pdir[1024];
+    cf_strbuf b = {0, 0, 0, 0};
+    char pdir[1024], data[1024];
     int m, f, ok = make_dir(dir, "");
+    if (make_data(data, sizeof data)) return 0;
     snprintf(pdir, sizeof pdir, "%s/%s", dir, PRECISION_NAME);
-    ok = ok && make_dir(pdir, "");
+    ok = ok && make_dir(pdir, "") && make_dir(dir, "data");
     write_version(&b);
     ok = ok && write_file(pdir, "", "VERSION", &b);
-    b.n = 0;
+    cf_strbuf_clear(&b);
     write_configs(&b);
     ok = ok && write_file(dir, "", "configs.tsv", &b);
-    b.n = 0;
+    cf_strbuf_clear(&b);
     write_points(&b);
     ok = ok && write_file(dir, "", "points.csv", &b);
-    free(b.s);
+    for (f = 0; f < NDATA_PUBLISHED; ++f) ok = ok && data_text(data, data_files[f], &b) && write_file(dir, "data", data_files[f], &b);
+    cf_strbuf_free(&b);
     for (m = 0; m < 2 && ok; ++m) {
-        sbuf files[NFILES];
+        cf_strbuf files[NFILES];
         memset(files, 0, sizeof files);
-        write_mode(m, files);
-        ok = make_dir(pdir, mode_names[m]);
+        ok = !write_mode(m, data, files) && make_dir(pdir, mode_names[m]);
         for (f = 0; f < NFILES; ++f) {
             ok = ok && write_file(pdir, mode_names[m], file_names[f], &files[f]);
-            free(files[f].s);
+            cf_strbuf_free(&files[f]);
         }
     }
+    remove_data(data);
     return ok;
 }
 
@@ -503,13 +584,17 @@ static void check_text(const char *name, const char *got, const char *want, int 
         t_pass(tname);
 }
 
-static void check_file(const char *dir, const char *sub, const char *name, const sbuf *b, int inputs,
+static void check_file(const char *dir, const char *sub, const char *name, const cf_strbuf *b, int inputs,
                        const double *exponents, int nconf)
 {
     char path[1024], label[160];
     char *want;
     snprintf(path, sizeof path, "%s/%s%s%s", dir, sub, *sub ? "/" : "", name);
     snprintf(label, sizeof label, "%s%s%s", sub, *sub ? "/" : "", name);
+    if (b->failed) {
+        t_fail("vectors", "out of memory computing %s", label);
+        return;
+    }
     if (!(want = read_all(path))) {
         t_fail("vectors", "cannot read %s (run make vectors)", path);
         return;
@@ -522,17 +607,21 @@ static void check_file(const char *dir, const char *sub, const char *name, const
 
 static void check_all(const char *dir)
 {
-    sbuf b = {0, 0, 0};
+    cf_strbuf b = {0, 0, 0, 0};
     int m, f, n, i;
-    const cf_subject *s = catalog(&n);
+    const cf_impl_config *c = catalog(&n);
     double *ex = malloc(sizeof *ex * (size_t)(n ? n : 1));
-    char *version, path[1024];
-    for (i = 0; i < n; ++i) ex[i] = s[i].lobe_exponent;
+    char *version, path[1024], data[1024];
+    if (!ex || make_data(data, sizeof data)) {
+        t_fail("vectors", "cannot write the data files the configurations name");
+        free(ex);
+        return;
+    }
+    for (i = 0; i < n; ++i) ex[i] = c[i].lobe_exponent;
     /* the VERSION file names the producer: only its format and materia's
      * version must match */
     snprintf(path, sizeof path, "%s/%s/VERSION", dir, PRECISION_NAME);
     version = read_all(path);
-    write_version(&b);
     if (!version)
         t_fail("vectors VERSION", "cannot read %s (run make vectors)", path);
     else {
@@ -543,24 +632,30 @@ static void check_all(const char *dir)
                 "%s says\n%s", path, version);
     }
     free(version);
-    b.n = 0;
     write_configs(&b);
     check_file(dir, "", "configs.tsv", &b, -1, ex, n);
-    b.n = 0;
+    cf_strbuf_clear(&b);
     write_points(&b);
     check_file(dir, "", "points.csv", &b, -1, ex, n);
-    free(b.s);
+    for (f = 0; f < NDATA_PUBLISHED; ++f) {
+        if (data_text(data, data_files[f], &b))
+            check_file(dir, "data", data_files[f], &b, -1, ex, n);
+        else
+            t_fail("vectors data", "cannot read the %s just written in %s", data_files[f], data);
+    }
+    cf_strbuf_free(&b);
     for (m = 0; m < 2; ++m) {
-        sbuf files[NFILES];
-        memset(files, 0, sizeof files);
-        write_mode(m, files);
+        cf_strbuf files[NFILES];
         char sub[64];
+        memset(files, 0, sizeof files);
+        if (write_mode(m, data, files)) t_fail("vectors", "%s: the queries could not all be made", mode_names[m]);
         snprintf(sub, sizeof sub, "%s/%s", PRECISION_NAME, mode_names[m]);
         for (f = 0; f < NFILES; ++f) {
             check_file(dir, sub, file_names[f], &files[f], file_inputs[f], ex, n);
-            free(files[f].s);
+            cf_strbuf_free(&files[f]);
         }
     }
+    remove_data(data);
     free(ex);
 }
 

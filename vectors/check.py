@@ -5,7 +5,7 @@ statements, points and queries (vectors/README.md, "The session") and
 compares the answers with materia's, as the README's tolerances say.
 
     python3 vectors/check.py --impl 'COMMAND' [--only REGEX] [--precision float|double]
-                             [--files eval,sample,...] [--tolerance T]
+                             [--files eval,sample,...] [--tolerance T] [--data DIR]
 
 Prints one line per mode and file, "PASS ..." or "FAIL ..." with the worst
 row (query, expected, got), and exits 0 when everything passed, 1 when a
@@ -72,15 +72,31 @@ def main():
     ap.add_argument("--precision", default="double", choices=["float", "double"])
     ap.add_argument("--files", default="eval,sample", help="which query files (default eval,sample)")
     ap.add_argument("--tolerance", type=float, default=1e-6)
+    ap.add_argument("--data", default=os.path.join(ROOT, "data"),
+                    help="the directory of the files the statements name as @DATA@ (default vectors/data)")
     a = ap.parse_args()
+    data = os.path.abspath(a.data)
     with open(os.path.join(ROOT, "configs.tsv"), newline="") as f:
         configs = {r["id"]: r for r in csv.DictReader(f, delimiter="\t")}
     points = {r[0]: r for r in read_csv(os.path.join(ROOT, "points.csv"))}
     chosen = {c for c, r in configs.items() if re.search(a.only, r["name"])}
+    selected = len(chosen)
+    for c in sorted(chosen, key=int):
+        # a configuration whose data file is missing (the MERL table is not
+        # published: materia-conformance --write-data DIR writes it) is skipped
+        r = configs[c]
+        r["statements"] = r["statements"].replace("@DATA@", data)
+        missing = [m for m in re.findall(r'"([^"]*)"', r["statements"]) if m.startswith(data + "/")
+                   and not os.path.exists(m)]
+        if missing:
+            print("SKIP %s: %s is missing (materia-conformance --write-data DIR, then --data DIR)"
+                  % (r["name"], missing[0]))
+            chosen.discard(c)
     files = a.files.split(",")
     if not chosen or any(f not in INPUTS for f in files):
-        sys.stderr.write("check.py: %s\n" % ("--only %r selects no configuration" % a.only if not chosen
-                                             else "--files takes " + ",".join(INPUTS)))
+        sys.stderr.write("check.py: %s\n" % ("--files takes " + ",".join(INPUTS) if chosen
+                                             else "--only %r selects no configuration" % a.only if not selected
+                                             else "every selected configuration was skipped"))
         return 2
     failed = 0
     for mode in ("pbrt-v2", "corrected"):
@@ -97,6 +113,10 @@ def main():
                         current = r[1]
                         lines.append(at_line(points[r[1]]))
                         expect.append(None)
+                        if configs[c]["at"]:
+                            # the configuration's own fields, over the point's
+                            lines.append("at " + configs[c]["at"])
+                            expect.append(None)
                     q, want = query(name, r, INPUTS[name])
                     lines.append(q)
                     expect.append(want)
