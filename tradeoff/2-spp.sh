@@ -13,7 +13,8 @@
 # sweep: SPP_SCENES (golden scene names), SPP_LIST, SPP_REF, SPP_REAL (real
 # scene names of ../shared/reference/scenes, "none" for none), SPP_REAL_LIST,
 # SPP_REAL_REF, SPP_REAL_SCALE (resolution divisor of the real scenes),
-# SPP_THREADS (2).
+# SPP_THREADS (2); SPP_REPORT_ONLY=1 rewrites the summary, plots and
+# section from an earlier run's $OUT/2-spp.csv without rendering.
 set -u
 : "${MT_BIN:?}" "${MT_TRADEOFF:?}" "${OUT:?}"
 QUICK=${QUICK:-0}
@@ -158,17 +159,25 @@ sweep() {
 }
 
 START=$(date +%s)
-for s in $SCENES; do
-    [ -f "$GOLDEN/$s.pbrt" ] || { echo "2-spp: no golden scene $s" >&2; exit 1; }
-    # shellcheck disable=SC2086
-    sweep "$s" "$GOLDEN/$s.pbrt" 1 "$REFSPP" $SPPS || exit 1
-done
-for s in $REAL; do
-    # shellcheck disable=SC2086
-    sweep "$s" "$SHARED/reference/scenes/$s.pbrt" "$REALSCALE" "$REALREF" $REALSPPS || exit 1
-done
-mv "$CSV.tmp" "$CSV"
-ELAPSED=$(($(date +%s) - START))
+if [ "${SPP_REPORT_ONLY:-0}" = 1 ] && [ -s "$CSV" ]; then
+    # Only the summary, plots and section again, from the CSV of an earlier
+    # run (with the same sweep settings); its duration is kept beside it.
+    rm -f "$CSV.tmp"
+    ELAPSED=$(cat "$OUT/2-spp.seconds" 2>/dev/null || echo "?")
+else
+    for s in $SCENES; do
+        [ -f "$GOLDEN/$s.pbrt" ] || { echo "2-spp: no golden scene $s" >&2; exit 1; }
+        # shellcheck disable=SC2086
+        sweep "$s" "$GOLDEN/$s.pbrt" 1 "$REFSPP" $SPPS || exit 1
+    done
+    for s in $REAL; do
+        # shellcheck disable=SC2086
+        sweep "$s" "$SHARED/reference/scenes/$s.pbrt" "$REALSCALE" "$REALREF" $REALSPPS || exit 1
+    done
+    mv "$CSV.tmp" "$CSV"
+    ELAPSED=$(($(date +%s) - START))
+    echo "$ELAPSED" > "$OUT/2-spp.seconds"
+fi
 
 # Per scene and renderer: the least-squares slope of log RMSE against log spp
 # and against log wall time; the error pbrt-v2 reaches at 1024 spp (or at its

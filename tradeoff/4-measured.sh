@@ -1,0 +1,135 @@
+#!/bin/sh
+# Measurement 4: measured BRDFs. $MT_TRADEOFF/measured (tradeoff/measured.c)
+# measures the error and the time per call of the irregular (.brdf, k-d
+# search) and half-angle (MERL) forms of a BRDF, and of MERL tables at
+# coarser resolutions; this script plots them and writes the report section
+# $OUT/4-measured.md. Environment: MT_TRADEOFF, OUT, QUICK, SHARED, GNUPLOT,
+# TRADEOFF_DIR (tools/run-tradeoff.sh).
+set -u
+: "${MT_TRADEOFF:?}" "${OUT:?}"
+QUICK=${QUICK:-0}
+SHARED=${SHARED:-}
+GNUPLOT=${GNUPLOT:-}
+TRADEOFF_DIR=${TRADEOFF_DIR:-$(cd "$(dirname "$0")" && pwd)}
+PROG=$MT_TRADEOFF/measured
+[ -x "$PROG" ] || { echo "4-measured: $PROG not found (build it first)" >&2; exit 1; }
+mkdir -p "$OUT"
+
+START=$(date +%s)
+set -- --out "$OUT"
+[ "$QUICK" = 1 ] && set -- "$@" --quick
+BRDFS=
+if [ -n "$SHARED" ] && [ -d "$SHARED/reference/scenes/brdfs" ]; then
+    BRDFS=$SHARED/reference/scenes/brdfs
+    set -- "$@" --brdfs "$BRDFS"
+fi
+rm -f "$OUT/4-measured-files.csv"
+"$PROG" "$@" || { echo "4-measured: $PROG failed" >&2; exit 1; }
+ELAPSED=$(($(date +%s) - START))
+A=$OUT/4-measured-analytic.csv
+F=$OUT/4-measured-files.csv
+
+PLOTS=
+if [ -n "$GNUPLOT" ]; then
+    TMP=$(mktemp -d "${TMPDIR:-/tmp}/mt-measured.XXXXXX") || exit 1
+    trap 'rm -rf "$TMP"' EXIT INT TERM
+    # one data file per material and form: param bytes ns error
+    awk -F, -v d="$TMP" 'NR > 1 && $2 != "analytic" {
+        m = $1; sub(/.* /, "", m); f = d "/" $2 "-" m ".dat"
+        print $3, $4, $5, $6 > f }' "$A"
+    mats=$(awk -F, 'NR > 1 && $2 == "analytic" { m = $1; sub(/.* /, "", m); print m }' "$A")
+    style() {
+        if [ -f "$TRADEOFF_DIR/style.gp" ]; then echo "load '$TRADEOFF_DIR/style.gp'"; fi
+        echo "set terminal pngcairo size 800,520 font 'sans,10'"
+        echo "set logscale xy; set grid; set key bottom left box opaque"
+        echo "set ylabel 'relative RMS error of f'"
+    }
+    # error against data size, and against time per call
+    for what in size time; do
+        {
+            style
+            echo "set output '$OUT/4-measured-$what.png'"
+            if [ $what = size ]; then
+                echo "set title 'Measured BRDF forms of a plastic: error against data size'"
+                echo "set xlabel 'data size (bytes)'; set format x '10^{%L}'"
+                col=2
+            else
+                echo "set title 'Measured BRDF forms of a plastic: error against time per f call'"
+                echo "set xlabel 'time per f call (ns, one thread)'; set format x '%g'"
+                col=3
+            fi
+            p="plot"; sep=""; pt=5
+            for m in $mats; do
+                p="$p$sep '$TMP/irregular-$m.dat' using $col:4 with linespoints pt $pt lw 1.5 title 'irregular, N samples, roughness $m'"
+                sep=","
+                p="$p, '$TMP/merl-$m.dat' using $col:4 with linespoints pt $((pt + 2)) lw 1.5 dt 2 title 'MERL table, 90/k bins, roughness $m'"
+                pt=$((pt + 4))
+            done
+            if [ $what = time ]; then
+                ta=$(awk -F, 'NR > 1 && $2 == "analytic" { s += $5; n++ } END { printf "%.1f", s / n }' "$A")
+                echo "set arrow from $ta, graph 0 to $ta, graph 1 nohead dt 3 lc rgb 'gray40'"
+                echo "set label 'analytic plastic' at $ta, graph 0.95 offset 0.5,0 tc rgb 'gray40'"
+            fi
+            echo "$p"
+        } > "$TMP/$what.gp"
+        "$GNUPLOT" "$TMP/$what.gp" || { echo "4-measured: gnuplot failed" >&2; exit 1; }
+        PLOTS="$PLOTS 4-measured-$what.png"
+    done
+fi
+
+MD=$OUT/4-measured.md
+{
+    echo "## 4. Measured BRDFs"
+    echo
+    echo "pbrt-v2 reads measured BRDFs in two forms: irregular samples (\`.brdf\`, a k-d search of"
+    echo "the samples near the remapped direction pair, Gaussian-weighted: IrregIsotropicBRDF) and"
+    echo "the MERL half-angle table (90 x 90 x 180 bins, the bin's value: RegularHalfangleBRDF)."
+    echo "\`tradeoff/measured.c\` measures what each costs per call and how far it is from the"
+    echo "BRDF it stands for. Error: the relative RMS difference of f over the three channels and"
+    echo "$(if [ "$QUICK" = 1 ]; then echo 4000; else echo 40000; fi) direction pairs (wo uniform over the hemisphere, wi cosine-distributed). Time:"
+    echo "ns per f call, one thread's CPU time, median of 5 runs over 4096 pairs."
+    echo
+    echo "**Against a known truth.** pbrt-v2's plastic (Kd 0.35 0.12 0.08, Ks 0.3, Blinn exponent"
+    echo "1/roughness) at two roughnesses stands for a measured material: irregular data of N pairs"
+    echo "drawn uniformly with the plastic's values, and its MERL table (bin centres), full and"
+    echo "averaged over k x k x k blocks of bins (90/k bins along theta_h; pbrt-v2 reads only the"
+    echo "full resolution, so a coarse table is held at it: the same time per call, k^3 less data)."
+    echo
+    if [ -n "$PLOTS" ]; then
+        for p in $PLOTS; do echo "![$p]($p)"; echo; done
+    else
+        echo "gnuplot was not found: the data are in \`4-measured-analytic.csv\` (material, form,"
+        echo "N or bins, bytes, ns per call, error) and \`4-measured-files.csv\`; plot error (column 6)"
+        echo "against bytes (4) or ns per call (5) on log-log axes, one series per form and material."
+        echo
+    fi
+    echo "| material | form | N or bins | data (bytes) | ns per call | relative RMS error |"
+    echo "| --- | --- | --- | --- | --- | --- |"
+    awk -F, 'NR > 1 { printf "| %s | %s | %s | %s | %s | %s |\n", $1, $2, ($2 == "analytic" ? "-" : $3), ($2 == "analytic" ? "-" : $4), $5, ($2 == "analytic" ? "0 (truth)" : $6) }' "$A"
+    echo
+    awk -F, 'NR > 1 && $2 == "analytic" { ta[$1] = $5 }
+        NR > 1 && $2 == "merl" && $3 == 90 { em[$1] = $6; tm[$1] = $5 }
+        NR > 1 && $2 == "irregular" { if (!($1 in ei) || $3 > ni[$1]) { ni[$1] = $3; ei[$1] = $6; ti[$1] = $5 } }
+        END {
+            for (m in em)
+                printf "%s: the full MERL table is off by %.1f%% at %.0f ns a call (the analytic BRDF: %.0f ns); %d irregular samples are off by %.0f%% at %.0f ns a call.\n", m, 100 * em[m], tm[m], ta[m], ni[m], 100 * ei[m], ti[m]
+        }' "$A"
+    echo
+    if [ -s "$F" ]; then
+        echo "**The real irregular files** of \`../shared/reference/scenes/brdfs\`, each against its"
+        echo "own MERL table (tabulated from the irregular BRDF at bin centres): the table's error"
+        echo "taking the irregular BRDF as the truth, the time per call of each form, and the time"
+        echo "to tabulate."
+        echo
+        echo "| file | samples | irregular ns/call | MERL ns/call | speed-up | MERL error | tabulation (s) |"
+        echo "| --- | --- | --- | --- | --- | --- | --- |"
+        awk -F, 'NR > 1 { printf "| %s | %s | %s | %s | %.1fx | %.2f%% | %s |\n", $1, $2, $3, $4, $3 / $4, 100 * $5, $6 }' "$F"
+        echo
+    else
+        echo "**The real irregular files** (\`../shared/reference/scenes/brdfs\`) were not measured:"
+        echo "\`../shared\` is absent."
+        echo
+    fi
+    echo "Measured by \`$(if [ "$QUICK" = 1 ]; then echo "make tradeoff QUICK=1"; else echo "make tradeoff"; fi)\` (\`tradeoff/4-measured.sh\`) in ${ELAPSED} s of wall time."
+} > "$MD.tmp" && mv "$MD.tmp" "$MD"
+echo "4-measured: wrote $A, $MD" >&2
