@@ -64,7 +64,9 @@ if [ -n "$GNUPLOT" ]; then
     done
     gp_head() {
         if [ -f "$TRADEOFF_DIR/style.gp" ]; then echo "load '$TRADEOFF_DIR/style.gp'"; fi
-        echo "set terminal pngcairo size 1100,560 font 'sans,10'"
+        echo "set terminal pngcairo size 1100,560 enhanced font 'DejaVu Sans,10'"
+        # the data files here are whitespace-separated (the shared style reads CSV)
+        echo "set datafile separator whitespace"
         echo "set output '$OUT/$1'"
         echo "set grid; set logscale xy; set format y '10^{%L}'; set format x '%g'; set key below maxrows 3"
         echo "set multiplot layout 1,2"

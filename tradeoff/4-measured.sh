@@ -40,7 +40,9 @@ if [ -n "$GNUPLOT" ]; then
     mats=$(awk -F, 'NR > 1 && $2 == "analytic" { m = $1; sub(/.* /, "", m); print m }' "$A")
     style() {
         if [ -f "$TRADEOFF_DIR/style.gp" ]; then echo "load '$TRADEOFF_DIR/style.gp'"; fi
-        echo "set terminal pngcairo size 800,520 font 'sans,10'"
+        echo "set terminal pngcairo size 800,520 enhanced font 'DejaVu Sans,10'"
+        # the data files here are whitespace-separated (the shared style reads CSV)
+        echo "set datafile separator whitespace"
         echo "set logscale xy; set grid; set key bottom left box opaque"
         echo "set ylabel 'relative RMS error of f'"
     }
@@ -55,14 +57,20 @@ if [ -n "$GNUPLOT" ]; then
                 col=2
             else
                 echo "set title 'Measured BRDF forms of a plastic: error against time per f call'"
-                echo "set xlabel 'time per f call (ns, one thread)'; set format x '%g'"
+                echo "set xlabel 'time per f call (ns, one thread)'; set format x '%g'; set xrange [20:20000]"
                 col=3
             fi
             p="plot"; sep=""; pt=5
             for m in $mats; do
                 p="$p$sep '$TMP/irregular-$m.dat' using $col:4 with linespoints pt $pt lw 1.5 title 'irregular, N samples, roughness $m'"
+                p="$p, '' using $col:4:(sprintf('N=%dk', \$1 / 1000)) with labels offset 0,0.8 font ',8' notitle"
                 sep=","
-                p="$p, '$TMP/merl-$m.dat' using $col:4 with linespoints pt $((pt + 2)) lw 1.5 dt 2 title 'MERL table, 90/k bins, roughness $m'"
+                if [ $what = size ]; then
+                    p="$p, '$TMP/merl-$m.dat' using $col:4 with linespoints pt $((pt + 2)) lw 1.5 dt 2 title 'MERL table, 90/k bins, roughness $m'"
+                else
+                    # a coarse table costs what the full one costs: only the full one
+                    p="$p, '$TMP/merl-$m.dat' every ::0::0 using $col:4 with points pt $((pt + 2)) ps 1.8 title 'MERL table (90 bins), roughness $m'"
+                fi
                 pt=$((pt + 4))
             done
             if [ $what = time ]; then
