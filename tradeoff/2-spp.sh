@@ -193,7 +193,7 @@ awk -F, '
 NR == 1 { next }
 {
     k = $1 SUBSEP $2; n[k]++; i = n[k]
-    S[k, i] = $3; T[k, i] = $4; E[k, i] = $6
+    S[k, i] = $3; T[k, i] = $4; C[k, i] = ($5 == "NA" ? 0 : $5); E[k, i] = $6
     if (!($1 in seen)) { seen[$1] = 1; order[++ns] = $1 }
     have[$2] = 1
 }
@@ -207,8 +207,9 @@ function slope(k, usetime,   i, x, y, sx, sy, sxx, sxy, m) {
     if (m < 2 || m * sxx - sx * sx == 0) return "NA"
     return sprintf("%.3f", (m * sxy - sx * sy) / (m * sxx - sx * sx))
 }
-# time for renderer key k to reach error e (points in spp order)
-function time_to(k, e,   i, a, b, f) {
+# time (from the array X: wall T or cpu C) for renderer key k to reach error
+# e (points in spp order)
+function time_to(k, e, X,   i, a, b, f) {
     flag = ""
     for (i = 1; i < n[k]; i++)
         if (E[k, i] >= e && E[k, i + 1] <= e) break
@@ -216,34 +217,39 @@ function time_to(k, e,   i, a, b, f) {
         if (E[k, 1] <= e) { i = 1 } else { i = n[k] - 1 }
         flag = "extrapolated"
     }
-    if (E[k, i] <= 0 || E[k, i + 1] <= 0 || E[k, i] == E[k, i + 1]) return T[k, i + 1]
+    if (X[k, i] <= 0 || X[k, i + 1] <= 0) return 0
+    if (E[k, i] <= 0 || E[k, i + 1] <= 0 || E[k, i] == E[k, i + 1]) return X[k, i + 1]
     f = (log(e) - log(E[k, i])) / (log(E[k, i + 1]) - log(E[k, i]))
-    return exp(log(T[k, i]) + f * (log(T[k, i + 1]) - log(T[k, i])))
+    return exp(log(X[k, i]) + f * (log(X[k, i + 1]) - log(X[k, i])))
 }
 END {
-    print "scene,slope_spp_materia,slope_time_materia,slope_spp_pbrt,slope_time_pbrt,target_spp,target_rmse,time_pbrt_s,time_materia_s,ratio,note"
+    print "scene,slope_spp_materia,slope_time_materia,slope_spp_pbrt,slope_time_pbrt,target_spp,target_rmse,time_pbrt_s,time_materia_s,ratio,cpu_pbrt_s,cpu_materia_s,ratio_cpu,note"
     for (j = 1; j <= ns; j++) {
         s = order[j]; km = s SUBSEP "materia"; kp = s SUBSEP "pbrt-v2"
         line = s "," slope(km, 0) "," slope(km, 1)
-        if (!have["pbrt-v2"]) { print line ",NA,NA,NA,NA,NA,NA,NA,no pbrt-v2"; continue }
+        if (!have["pbrt-v2"]) { print line ",NA,NA,NA,NA,NA,NA,NA,NA,NA,NA,no pbrt-v2"; continue }
         line = line "," slope(kp, 0) "," slope(kp, 1)
         ti = 0
         for (i = 1; i <= n[kp]; i++) if (S[kp, i] <= 1024) ti = i
         tp = T[kp, ti]; e = E[kp, ti]
-        tm = time_to(km, e)
-        printf "%s,%d,%.5g,%.4g,%.4g,%.3f,%s\n", line, S[kp, ti], e, tp, tm, tm / tp, flag
+        tm = time_to(km, e, T); fw = flag
+        cp = C[kp, ti]; cm = time_to(km, e, C)
+        printf "%s,%d,%.5g,%.4g,%.4g,%.3f,%.4g,%.4g,%s,%s\n", line, S[kp, ti], e, tp, tm, tm / tp, cp, cm,
+               (cp > 0 && cm > 0) ? sprintf("%.3f", cm / cp) : "NA", fw
     }
 }' smin="$SLOPEMIN" "$CSV" > "$SUM.tmp" && mv "$SUM.tmp" "$SUM"
 
 # Plots: one panel per scene, RMSE against spp and against wall time.
 PLOTS=
+# the scenes of the CSV, in its order (in SPP_REPORT_ONLY runs too)
+PSCENES=$(awk -F, 'NR > 1 && !($1 in seen) { seen[$1] = 1; print $1 }' "$CSV")
 if [ -n "$GNUPLOT" ]; then
-    for s in $SCENES $REAL; do
+    for s in $PSCENES; do
         for r in materia pbrt-v2; do
             awk -F, -v s="$s" -v r="$r" '$1 == s && $2 == r { print $3, $4, $6 }' "$CSV" > "$TMP/$s.$r.dat"
         done
     done
-    np=$(echo $SCENES $REAL | wc -w)
+    np=$(echo $PSCENES | wc -w)
     cols=4; [ "$np" -le 4 ] && cols=$np
     rows=$(((np + cols - 1) / cols))
     for what in rmse time; do
@@ -270,11 +276,11 @@ if [ -n "$GNUPLOT" ]; then
             fi
             echo "set ylabel 'RMSE (radiance)'"
             echo "set multiplot layout $rows,$cols title \"$title\""
-            for s in $SCENES $REAL; do
+            for s in $PSCENES; do
                 echo "set title '$s'"
-                p="plot '$TMP/$s.materia.dat' using $col:3 with linespoints pt 7 ps 0.6 lw 1.5 title 'materia'"
+                p="plot '$TMP/$s.materia.dat' using $col:3 with linespoints lc rgb '#1f77b4' pt 7 ps 0.6 lw 1.5 title 'materia'"
                 [ -s "$TMP/$s.pbrt-v2.dat" ] &&
-                    p="$p, '$TMP/$s.pbrt-v2.dat' using $col:3 with linespoints pt 5 ps 0.6 lw 1.5 dt 2 title 'pbrt-v2'"
+                    p="$p, '$TMP/$s.pbrt-v2.dat' using $col:3 with linespoints lc rgb '#d62728' pt 5 ps 0.6 lw 1.5 dt 2 title 'pbrt-v2'"
                 echo "$p"
             done
             echo "unset multiplot"
@@ -282,6 +288,32 @@ if [ -n "$GNUPLOT" ]; then
         "$GNUPLOT" "$gp" || { echo "2-spp: gnuplot failed on $gp" >&2; exit 1; }
         PLOTS="$PLOTS 2-spp-$what.png"
     done
+    # The relative-error percentiles, geometric mean over the golden scenes.
+    for r in materia pbrt-v2; do
+        awk -F, -v r="$r" -v scenes="$SCENES" 'BEGIN { split(scenes, a, " "); for (i in a) g[a[i]] = 1 }
+            NR > 1 && $2 == r && ($1 in g) && $8 > 0 && $10 > 0 {
+                if (!($3 in n)) o[++k] = $3; n[$3]++; p50[$3] += log($8); p90[$3] += log($9); p99[$3] += log($10) }
+            END { for (i = 1; i <= k; i++) { x = o[i]; printf "%s %.5g %.5g %.5g\n", x, exp(p50[x] / n[x]), exp(p90[x] / n[x]), exp(p99[x] / n[x]) } }' \
+            "$CSV" > "$TMP/rel.$r.dat"
+    done
+    {
+        if [ -f "$TRADEOFF_DIR/style.gp" ]; then echo "load '$TRADEOFF_DIR/style.gp'"; fi
+        echo "set terminal pngcairo size 760,500 enhanced font 'DejaVu Sans,10'"
+        echo "set datafile separator whitespace"
+        echo "set output '$OUT/2-spp-relerr.png'"
+        echo "set logscale xy; set format y '10^{%L}'; set format x '%g'; set grid; set key top right box opaque"
+        echo "set xlabel 'samples per pixel'; set ylabel 'relative error |a - b| / (b + 0.01)'"
+        echo "set title 'Relative error percentiles over pixels, geometric mean over the golden scenes'"
+        p="plot '$TMP/rel.materia.dat' using 1:2 with linespoints lc rgb '#1f77b4' pt 7 lw 1.5 title 'materia, median'"
+        p="$p, '' using 1:4 with linespoints lc rgb '#1f77b4' pt 9 lw 1.5 title 'materia, 99th percentile'"
+        if [ -s "$TMP/rel.pbrt-v2.dat" ]; then
+            p="$p, '$TMP/rel.pbrt-v2.dat' using 1:2 with linespoints lc rgb '#d62728' pt 5 lw 1.5 dt 2 title 'pbrt-v2, median'"
+            p="$p, '' using 1:4 with linespoints lc rgb '#d62728' pt 11 lw 1.5 dt 2 title 'pbrt-v2, 99th percentile'"
+        fi
+        echo "$p"
+    } > "$TMP/rel.gp"
+    "$GNUPLOT" "$TMP/rel.gp" || { echo "2-spp: gnuplot failed on $TMP/rel.gp" >&2; exit 1; }
+    PLOTS="$PLOTS 2-spp-relerr.png"
 fi
 
 # The report section.
@@ -324,18 +356,26 @@ MD=$OUT/2-spp.md
     fi
     echo "Convergence slopes (least squares of log RMSE against log spp and log wall time over the"
     echo "counts from $SLOPEMIN spp on, where the fixed cost of a run no longer dominates; -0.5 is"
-    echo "plain Monte Carlo), and the wall time each renderer needs to reach the RMSE pbrt-v2 reaches"
-    echo "at 1024 spp (or its largest count), from \`2-spp-summary.csv\`:"
+    echo "plain Monte Carlo), and the time each renderer needs to reach the RMSE pbrt-v2 reaches at"
+    echo "1024 spp (or its largest count), interpolated log-log between materia's two bracketing"
+    echo "counts: wall time, and user+sys CPU time (steadier on a shared machine), from"
+    echo "\`2-spp-summary.csv\`:"
     echo
     awk -F, 'NR == 1 { next }
-        NR == 2 { print "| scene | slope/spp materia | slope/spp pbrt-v2 | slope/time materia | slope/time pbrt-v2 | pbrt-v2 spp | its RMSE | pbrt-v2 s | materia s | ratio |"
-                  print "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |" }
-        { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s%s | %s |\n", $1, $2, $4, $3, $5, $6, $7, $8, $9, ($11 == "extrapolated" ? " (extrap.)" : ""), $10 }' "$SUM"
+        NR == 2 { print "| scene | slope/spp materia | slope/spp pbrt-v2 | slope/wall materia | slope/wall pbrt-v2 | pbrt-v2 spp | its RMSE | pbrt-v2 wall s | materia wall s | ratio | pbrt-v2 cpu s | materia cpu s | ratio |"
+                  print "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |" }
+        { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s%s | %s | %s | %s | %s |\n", $1, $2, $4, $3, $5, $6, $7, $8, $9, ($14 == "extrapolated" ? " (extrap.)" : ""), $10, $11, $12, $13 }' "$SUM"
     echo
-    awk -F, 'NR > 1 && $10 != "NA" && $10 > 0 { n++; s += log($10); if ($10 > w) { w = $10; ws = $1 } if (b == "" || $10 < b) { b = $10; bs = $1 } }
+    awk -F, 'function gm(c, what,   n, s, w, b, ws, bs, i) {
+            n = 0; s = 0; w = 0; b = ""
+            for (i = 2; i <= nr; i++) { x = V[i, c]; if (x == "NA" || x <= 0) continue
+                n++; s += log(x); if (x > w) { w = x; ws = V[i, 1] } if (b == "" || x < b) { b = x; bs = V[i, 1] } }
+            if (n) printf "Time to pbrt-v2'\''s error, materia/pbrt-v2, %s: geometric mean %.2f over %d scenes, from %.2f (%s) to %.2f (%s). ", what, exp(s / n), n, b, bs, w, ws
+        }
+        { nr = NR; for (i = 1; i <= NF; i++) V[NR, i] = $i }
         NR > 1 { if ($2 != "NA") { nm++; sm += $2 } if ($4 != "NA") { np++; sp += $4 } }
         END {
-            if (n) printf "Time to pbrt-v2'\''s error, materia/pbrt-v2: geometric mean %.2f over %d scenes, from %.2f (%s) to %.2f (%s). ", exp(s / n), n, b, bs, w, ws
+            gm(10, "wall time"); gm(13, "CPU time")
             if (nm) printf "Mean slope against spp: materia %.2f", sm / nm
             if (np) printf ", pbrt-v2 %.2f", sp / np
             if (nm) printf ".\n"
