@@ -10,6 +10,9 @@
 #                              only the side-by-side timing, a quick run
 #   make demo                  a contact sheet of every material: demo.png
 #   make golden                render the golden images again
+#   make tradeoff [QUICK=1] [TRADEOFF_ONLY=1,5]
+#                              the speed/accuracy trade report, float and
+#                              double builds: build/tradeoff/report.md
 #   make reference             docs/REFERENCE.md from the parameter tables
 #   make vectors               write the published conformance vectors (vectors/)
 #   make fuzz FUZZ_SECONDS=60  libFuzzer on every reader (clang), N seconds each
@@ -120,6 +123,7 @@ TOOL_SRC  := $(sort $(wildcard tools/*.c))
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 TSUP_SRC  := $(sort $(wildcard tests/support/*.c))
 BENCH_SRC := $(sort $(wildcard bench/*.c))
+TRADE_SRC := $(sort $(wildcard tradeoff/*.c))
 
 FUZZ_TARGETS := scene query brdf merl exr png pfm spd
 
@@ -129,6 +133,10 @@ TSUP_OBJ  := $(TSUP_SRC:%.c=$(BUILD)/obj/%.o)
 TOOLS     := $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
 TESTS     := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCHES   := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
+TRADEOFFS := $(TRADE_SRC:tradeoff/%.c=$(BUILD)/tradeoff/%)
+# the suite's objects but its main, for the trade-off programs (an archive:
+# a program takes only what it uses)
+CONF_LIB  := $(BUILD)/obj/libconformance.a
 CONF_BIN  := $(BUILD)/bin/materia-conformance
 # a deliberately wrong protocol implementation, for tests/test_impl.c
 IMPL_WRONG := $(BUILD)/tests/impl-wrong
@@ -162,7 +170,7 @@ SONAME     := lib$(LIBNAME).so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches check check-full vectors other-conformance bench bench-pbrt demo golden fuzz install uninstall reference clean distclean help
+.PHONY: FORCE all lib tools tests benches tradeoffs tradeoff check check-full vectors other-conformance bench bench-pbrt demo golden fuzz install uninstall reference clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -170,6 +178,7 @@ lib: $(STATIC_LIB) $(SHARED_LIB)
 tools: $(TOOLS)
 tests: $(TESTS) $(CONF_BIN) $(IMPL_WRONG) $(FUZZ_BINS)
 benches: $(BENCHES)
+tradeoffs: $(TRADEOFFS)
 
 $(CONFIG_H): Makefile $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
@@ -247,6 +256,15 @@ $(BUILD)/bench/bvh-embree: $(BUILD)/obj/bench/embree/bvh_embree.o $(TSUP_OBJ) $(
 $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(TSUP_OBJ) $(LTO_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
+
+$(CONF_LIB): $(filter-out %/conformance/main.o,$(CONF_OBJ))
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+# the trade-off programs (make tradeoff), linked as the benchmarks are
+$(BUILD)/tradeoff/%: $(BUILD)/obj/tradeoff/%.o $(CONF_LIB) $(TSUP_OBJ) $(LTO_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(CONF_LIB) $(TSUP_OBJ) $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
 
 # A C++ program against the public headers and libmateria.a (make check):
 # the headers' extern "C" guards and C++-clean inline functions. Built with
@@ -333,6 +351,19 @@ bench-pbrt:
 	BENCH_SPP=$(BENCH_SPP) BENCH_REPEAT=$(BENCH_REPEAT) BENCH_THREADS=$(BENCH_THREADS) \
 	    sh tools/bench-pbrt.sh build/float $(BENCH_GROUPS)
 
+# The speed/accuracy trade (docs/TRADEOFF.md): the float and the double
+# build with their trade-off programs (tradeoff/*.c), then every measurement
+# script tradeoff/N-name.sh (tools/run-tradeoff.sh): CSV, PNG plots (with
+# gnuplot, optional) and build/tradeoff/report.md. QUICK=1: reduced sizes
+# (minutes); TRADEOFF_ONLY=1,5: only those measurements.
+QUICK ?= 0
+TRADEOFF_ONLY ?=
+TRADEOFF_OUT ?= build/tradeoff
+tradeoff:
+	$(MAKE) --no-print-directory PRECISION=float SANITIZE= BUILD=build/float all tradeoffs build/float/tests/impl-wrong
+	$(MAKE) --no-print-directory PRECISION=double SANITIZE= BUILD=build/double all tradeoffs build/double/tests/impl-wrong
+	QUICK=$(QUICK) TRADEOFF_ONLY=$(TRADEOFF_ONLY) sh tools/run-tradeoff.sh build/float build/double $(TRADEOFF_OUT)
+
 # libFuzzer on each target for FUZZ_SECONDS seconds (docs/FUZZING.md): the
 # library and targets built with clang, ASan, UBSan and libFuzzer's coverage
 # in build/fuzz; new inputs go to build/fuzz/work/TARGET, crashes to
@@ -399,11 +430,12 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,19p' Makefile
+	@sed -n '2,22p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
          $(BENCH_SRC:bench/%.c=$(BUILD)/obj/bench/%.d) $(BUILD)/obj/bench/embree/bvh_embree.d \
+         $(TRADE_SRC:tradeoff/%.c=$(BUILD)/obj/tradeoff/%.d) \
          $(wildcard $(BUILD)/obj/fuzz/*.d)
 
 # Keep test, tool and benchmark objects (they are intermediate files to make).
