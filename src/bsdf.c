@@ -130,6 +130,37 @@ mt_rgb mt_bsdf_f(const mt_bsdf *b, mt_vec3 woW, mt_vec3 wiW, unsigned flags)
                  mt_rgb_black());
 }
 
+/* The pdf's sum over the components that match flags, local directions. */
+static mt_real sum_pdf(const mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, unsigned flags)
+{
+    mt_real pdf = 0;
+    int i, matching = 0;
+    for (i = 0; i < b->n; ++i)
+        if (mt_type_matches(b->bxdfs[i]->type, flags)) {
+            ++matching;
+            pdf += b->bxdfs[i]->ops->pdf(b->bxdfs[i], wo, wi);
+        }
+    return matching > 0 ? pdf / matching : 0;
+}
+
+mt_rgb mt__bsdf_f_pair(const mt_bsdf *b, mt_vec3 woW, mt_vec3 wiW, unsigned flags, mt__bsdf_pair *pair)
+{
+    unsigned fl;
+    pair->ok = mt__admit_dir(&woW) && mt__admit_dir(&wiW);
+    if (!pair->ok) return mt_rgb_black();
+    pair->wo = mt_frame_to_local(&b->frame, woW);
+    pair->wi = mt_frame_to_local(&b->frame, wiW);
+    fl = leak_flags(b, woW, wiW, flags);
+    if (!fl) return mt_rgb_black();
+    return sum_f(b, pair->wo, pair->wi, fl, NULL, mt_rgb_black());
+}
+
+mt_real mt__bsdf_pdf_pair(const mt_bsdf *b, const mt__bsdf_pair *pair, unsigned flags)
+{
+    if (b->n == 0 || !pair->ok) return 0;
+    return sum_pdf(b, pair->wo, pair->wi, flags);
+}
+
 static mt_bsdf_sample failed_sample(void)
 {
     mt_bsdf_sample s;
@@ -183,18 +214,8 @@ mt_bsdf_sample mt_bsdf_sample_f(const mt_bsdf *b, mt_vec3 woW, mt_real uc, mt_re
 
 mt_real mt_bsdf_pdf(const mt_bsdf *b, mt_vec3 woW, mt_vec3 wiW, unsigned flags)
 {
-    mt_vec3 wo, wi;
-    mt_real pdf = 0;
-    int i, matching = 0;
     if (b->n == 0 || !mt__admit_dir(&woW) || !mt__admit_dir(&wiW)) return 0;
-    wo = mt_frame_to_local(&b->frame, woW);
-    wi = mt_frame_to_local(&b->frame, wiW);
-    for (i = 0; i < b->n; ++i)
-        if (mt_type_matches(b->bxdfs[i]->type, flags)) {
-            ++matching;
-            pdf += b->bxdfs[i]->ops->pdf(b->bxdfs[i], wo, wi);
-        }
-    return matching > 0 ? pdf / matching : 0;
+    return sum_pdf(b, mt_frame_to_local(&b->frame, woW), mt_frame_to_local(&b->frame, wiW), flags);
 }
 
 /* Rows of the stratified grid are generated and consumed one at a time, so no

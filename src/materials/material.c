@@ -180,7 +180,15 @@ int mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom, con
                            mt_bssrdf *out)
 {
     /* pbrt-v2's GetBSSRDF reads the unbumped shading point */
-    return m->ops->bssrdf ? m->ops->bssrdf(m, dg_shading, out) : 0;
+    return m->ops->bssrdf ? m->ops->bssrdf(m, dg_shading, NULL, out) : 0;
+}
+
+int mt__material_has_bssrdf(const mt_material *m) { return m->ops->bssrdf != NULL; }
+
+int mt__material_get_bssrdf_cached(const mt_material *m, const mt_diffgeom *dg_shading,
+                                   mt__bssrdf_cache *cache, mt_bssrdf *out)
+{
+    return m->ops->bssrdf ? m->ops->bssrdf(m, dg_shading, cache, out) : 0;
 }
 
 int mt__material_max_bxdfs(const mt_material *m) { return m->ops->max_bxdfs(m); }

@@ -8,6 +8,7 @@
 #include "materia/bump.h"
 #include "materia/material.h"
 #include "bsdf_internal.h"
+#include "materials/bssrdf_cache.h"
 
 #define MT_MATERIAL_SLOTS 8
 
@@ -22,7 +23,8 @@ typedef struct mt_material_ops {
                            mt_arena *arena, mt_error *err);
     /* the BSDF's eta (pbrt-v2 passes the index for glass and translucent) */
     mt_real (*eta)(const mt_material *m, const mt_diffgeom *dgs);
-    int (*bssrdf)(const mt_material *m, const mt_diffgeom *dgs, mt_bssrdf *out);
+    /* cache: the thread's last SubsurfaceFromDiffuse, or NULL */
+    int (*bssrdf)(const mt_material *m, const mt_diffgeom *dgs, mt__bssrdf_cache *cache, mt_bssrdf *out);
     void (*destroy)(mt_material *m);
     /* a whole get_bsdf of its own (the mix); NULL for the common path */
     mt_bsdf *(*get_bsdf)(const mt_material *m, const mt_diffgeom *dg_geom,

@@ -9,6 +9,7 @@
  */
 #include <string.h>
 #include "materials/media.h"
+#include "materials/bssrdf_cache.h"
 
 static const struct {
     const char *name;
@@ -126,4 +127,27 @@ void mt_subsurface_from_diffuse(mt_rgb kd, mt_real mfp, mt_real eta, mt_rgb *sig
         sigma_prime_s->c[c] = alphap * sigma_prime_t;
         sigma_a->c[c] = sigma_prime_t - sigma_prime_s->c[c];
     }
+}
+
+void mt__subsurface_from_diffuse_cached(mt__bssrdf_cache *cache, mt_rgb kd, mt_real mfp, mt_real eta,
+                                        mt_rgb *sigma_a, mt_rgb *sigma_prime_s)
+{
+    mt_real key[5];
+    key[0] = kd.c[0];
+    key[1] = kd.c[1];
+    key[2] = kd.c[2];
+    key[3] = mfp;
+    key[4] = eta;
+    /* the same bits (memcmp: -0 is not 0 for 1 / mfp, a NaN equals itself) */
+    if (cache && cache->valid && memcmp(cache->key, key, sizeof key) == 0) {
+        *sigma_a = cache->sigma_a;
+        *sigma_prime_s = cache->sigma_prime_s;
+        return;
+    }
+    mt_subsurface_from_diffuse(kd, mfp, eta, sigma_a, sigma_prime_s);
+    if (!cache) return;
+    memcpy(cache->key, key, sizeof key);
+    cache->sigma_a = *sigma_a;
+    cache->sigma_prime_s = *sigma_prime_s;
+    cache->valid = 1;
 }

@@ -28,7 +28,7 @@ static mt_status ss_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs
     return MT_OK;
 }
 
-static int ss_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt_bssrdf *out)
+static int ss_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt__bssrdf_cache *cache, mt_bssrdf *out)
 {
     mt_real scale = ((const subsurface *)m)->scale;
     /* pbrt-v2 does not clamp these */
@@ -38,10 +38,10 @@ static int ss_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt_bssrdf *ou
     return 1;
 }
 
-static int kd_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt_bssrdf *out)
+static int kd_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt__bssrdf_cache *cache, mt_bssrdf *out)
 {
     mt_real e = MT_FLOAT(m, INDEX, dgs), mfp = MT_FLOAT(m, MFP, dgs);
-    mt_subsurface_from_diffuse(MT_RGB(m, KD, dgs), mfp, e, &out->sigma_a, &out->sigma_prime_s);
+    mt__subsurface_from_diffuse_cached(cache, MT_RGB(m, KD, dgs), mfp, e, &out->sigma_a, &out->sigma_prime_s);
     out->eta = e;
     return 1;
 }

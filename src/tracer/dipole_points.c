@@ -187,13 +187,11 @@ typedef struct deposit_arg {
     int index;
 } deposit_arg;
 
-static int has_bssrdf(const mt__prim_info *info, const mt_surface *sf)
+/* Only whether the material has one: its coefficients (kdsubsurface's
+ * inversion of Kd included) are not needed to deposit a point. */
+static int has_bssrdf(const mt__prim_info *info)
 {
-    mt_diffgeom dgs;
-    mt_bssrdf b;
-    if (!info || !info->material) return 0;
-    mt_surface_shading(sf, &dgs);
-    return mt_material_get_bssrdf(info->material, &sf->dg, &dgs, &b);
+    return info && info->material && mt__material_has_bssrdf(info->material);
 }
 
 static void push(struct cand_buf *b, const mt__ss_point *p)
@@ -230,7 +228,7 @@ static void trace_path(const deposit_job *job, long k, struct cand_buf *out)
             mt_surface sf;
             mt_hit_surface(&hit, &ray, &sf);
             nn = faceforward(sf.dg.n, mt_v3_neg(ray.d));
-            if (depth >= 3 && has_bssrdf(mt_shape_user(hit.shape), &sf)) {
+            if (depth >= 3 && has_bssrdf(mt_shape_user(hit.shape))) {
                 mt__ss_point c;
                 memset(&c, 0, sizeof c);
                 c.p = sf.dg.p;

@@ -5,6 +5,7 @@
  */
 #include "materia/sampling.h"
 #include "tracer/shading.h"
+#include "bsdf_internal.h"
 
 int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
                      const mt_raydiff *rd, mt__vertex *v)
@@ -87,10 +88,11 @@ mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt_
     /* sample the light */
     mt__light_sample_l(light, &v->sf, v->p, lu[0], lu[1], lu[2], &ls);
     if (ls.pdf > 0 && !mt_rgb_is_black(ls.Li)) {
-        mt_rgb f = mt_bsdf_f(v->bsdf, v->wo, ls.wi, NON_SPECULAR);
+        mt__bsdf_pair pair;
+        mt_rgb f = mt__bsdf_f_pair(v->bsdf, v->wo, ls.wi, NON_SPECULAR, &pair);
         if (!mt_rgb_is_black(f) && !mt_geometry_occluded(s->geom, &ls.shadow)) {
             mt_real w = 1;
-            if (!delta) w = mt_power_heuristic(1, ls.pdf, 1, mt_bsdf_pdf(v->bsdf, v->wo, ls.wi, NON_SPECULAR));
+            if (!delta) w = mt_power_heuristic(1, ls.pdf, 1, mt__bsdf_pdf_pair(v->bsdf, &pair, NON_SPECULAR));
             Ld = mt_rgb_scale(mt_rgb_mul(f, ls.Li), mt_v3_absdot(ls.wi, v->n) * w / ls.pdf);
         }
     }

@@ -14,6 +14,7 @@
 #include "tracer/film.h"
 #include "tracer/light.h"
 #include "tracer/sampler.h"
+#include "materials/bssrdf_cache.h"
 
 typedef enum mt__integrator { MT__INTEGRATOR_PATH, MT__INTEGRATOR_DIRECT, MT__INTEGRATOR_DIPOLE } mt__integrator;
 
@@ -75,6 +76,7 @@ typedef struct mt__thread_ctx {
     const mt__dipole *dipole; /* dipolesubsurface: the render's points and octree */
     mt_real fdr_eta, fdr;     /* the last Fdr computed (corrected mode integrates it) */
     int fdr_valid;
+    mt__bssrdf_cache bssrdf_cache; /* the last kdsubsurface inversion */
 } mt__thread_ctx;
 
 /* Dimension pairs of a camera sample: the image position, the lens, then

@@ -22,6 +22,7 @@ struct mt_shape {
     /* quadrics, as pbrt-v2 stores them (its float arithmetic in mt_real) */
     mt_real radius, zmin, zmax, phi_max; /* sphere, cylinder; disk: radius, phi_max */
     mt_real theta_min, theta_max;        /* sphere */
+    mt_vec3 center;                      /* sphere: o2w of the origin */
     mt_real height, inner_radius;        /* disk */
 
     /* triangle meshes (pbrt-v2 TriangleMesh: P in world space, N and S in

@@ -48,6 +48,7 @@ mt_status mt__sphere_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
     s->theta_min = mt_acos(mt_clamp(s->zmin / radius, -1, 1));
     s->theta_max = mt_acos(mt_clamp(s->zmax / radius, -1, 1));
     s->phi_max = mt_radians(mt_clamp(pm, 0, 360));
+    s->center = mt_transform_point(&s->o2w, mt_v3(0, 0, 0));
     if (!(s->zmin < s->zmax)) {
         mt__locate_param(err, ps, "zmin");
         return mt_error_param(err, MT_ERR_INVALID, "zmin",
@@ -180,7 +181,8 @@ mt_vec3 mt__sphere_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns
     return mt_transform_point(&s->o2w, p);
 }
 
-static mt_vec3 sphere_center(const mt_shape *s) { return mt_transform_point(&s->o2w, mt_v3(0, 0, 0)); }
+/* the world-space centre, transformed once when the sphere is made */
+static mt_vec3 sphere_center(const mt_shape *s) { return s->center; }
 
 /* Whether the cone sampling applies: always in pbrt-v2 mode; with
  * quadric-scale fixed, only under a similarity (radius in world units). */
