@@ -414,11 +414,9 @@ static inline ALWAYS_INLINE int traverse(const mt_geometry *g, const mt_ray *r, 
         } else {
             uint32_t i;
             for (i = 0; i < cur.count; ++i) {
-                mt_ray rr = *r;
                 mt_hit h;
                 uint32_t id = g->quad_id[cur.index + i];
-                rr.tmax = tmax;
-                if (!mt__quadric_intersect(g->quad[cur.index + i], &rr, &h)) continue;
+                if (!mt__quadric_intersect_to(g->quad[cur.index + i], r, tmax, any ? NULL : &h)) continue;
                 if (any) return 1;
                 if (h.t < tmax || !bs->found || id < bs->id) {
                     bs->t = tmax = h.t;

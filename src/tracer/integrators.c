@@ -31,7 +31,14 @@ void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, 
     }
 }
 
-void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2])
+void mt__seed_slot_fill(mt__thread_ctx *tc, int vertex, unsigned k)
+{
+    mt__seed_slot *slot = &tc->seed_cache[vertex][k];
+    mt__dim_seeds_init(&tc->sampler, MT__DIM_VERTEX0 + (uint32_t)vertex * 0x10000u + k, &slot->seeds);
+    slot->gen = tc->pixel_gen;
+}
+
+void mt__vertex_sample_slow(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2])
 {
     if (vertex < MT__LD_VERTICES) {
         uint32_t dim = MT__DIM_VERTEX0 + (uint32_t)vertex * 0x10000u + k;

@@ -93,8 +93,24 @@ void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, 
                             int x, int y);
 
 /* Two uniform values for pair `k` of vertex `vertex`, array element `j` of
- * `n` (n = 1 for a single sample). */
-void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2]);
+ * `n` (n = 1 for a single sample). The common case -- a low-discrepancy
+ * vertex and a pair whose seeds the thread keeps -- is inlined into the
+ * integrators (each call site has constant k, j and n); the rest, and the
+ * first use of a pair in a pixel, go through mt__vertex_sample_slow and
+ * mt__seed_slot_fill with the same arithmetic. */
+void mt__vertex_sample_slow(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2]);
+void mt__seed_slot_fill(mt__thread_ctx *tc, int vertex, unsigned k);
+static inline void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2])
+{
+    if (vertex < MT__LD_VERTICES && k < MT__SEED_CACHE_PAIRS) {
+        uint32_t rindex = n == 1 ? tc->rindex : mt__reverse_bits(tc->index * (uint32_t)n + (uint32_t)j);
+        mt__seed_slot *slot = &tc->seed_cache[vertex][k];
+        if (slot->gen != tc->pixel_gen) mt__seed_slot_fill(tc, vertex, k);
+        mt__sample_2d_rev(tc->sampler.tables, &slot->seeds, rindex, out);
+        return;
+    }
+    mt__vertex_sample_slow(tc, vertex, k, j, n, out);
+}
 
 /* The radiance along a camera ray (pbrt-v2 SamplerRenderer::Li with the
  * scene's surface integrator). */

@@ -240,10 +240,11 @@ void mt__ray_to_object(const mt_shape *s, const mt_ray *r, mt__oray *out)
     out->tmax = r->tmax;
 }
 
-static int quadric_hit(const mt_shape *s, const mt_ray *r, double *t, double p[3])
+static int quadric_hit(const mt_shape *s, const mt_ray *r, mt_real tmax, double *t, double p[3])
 {
     mt__oray o;
     mt__ray_to_object(s, r, &o);
+    o.tmax = tmax;
     switch (s->kind) {
     case MT_SHAPE_SPHERE: return mt__sphere_hit(s, &o, t, p);
     case MT_SHAPE_DISK: return mt__disk_hit(s, &o, t, p);
@@ -253,10 +254,11 @@ static int quadric_hit(const mt_shape *s, const mt_ray *r, double *t, double p[3
     return 0;
 }
 
-int mt__quadric_intersect(const mt_shape *s, const mt_ray *r, mt_hit *hit)
+int mt__quadric_intersect_to(const mt_shape *s, const mt_ray *r, mt_real tmax, mt_hit *hit)
 {
     double t, p[3];
-    if (!quadric_hit(s, r, &t, p)) return 0;
+    if (!quadric_hit(s, r, tmax, &t, p)) return 0;
+    if (!hit) return 1;
     hit->t = (mt_real)t;
     hit->pobj[0] = p[0];
     hit->pobj[1] = p[1];
@@ -287,7 +289,7 @@ int mt_shape_intersect(const mt_shape *s, uint32_t prim, const mt_ray *r, mt_hit
         hit->b1 = b1;
         hit->b2 = b2;
         hit->pobj[0] = hit->pobj[1] = hit->pobj[2] = 0;
-    } else if (!mt__quadric_intersect(s, r, hit)) {
+    } else if (!mt__quadric_intersect_to(s, r, r->tmax, hit)) {
         return 0;
     }
     hit->shape = s;

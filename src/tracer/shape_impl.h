@@ -155,8 +155,10 @@ static inline mt_real mt__next_toward(mt_real x, mt_real dir)
 #endif
 }
 
-/* Quadric hits for the BVH and mt_shape_intersect (shape.c). */
-int mt__quadric_intersect(const mt_shape *s, const mt_ray *r, mt_hit *hit);
+/* Quadric hits for the BVH and mt_shape_intersect (shape.c): r in
+ * [r->tmin, tmax] (the BVH's current closest hit, without a copy of the
+ * ray); hit may be NULL when only whether is asked (an any-hit query). */
+int mt__quadric_intersect_to(const mt_shape *s, const mt_ray *r, mt_real tmax, mt_hit *hit);
 
 /* pbrt-v2's choice between the two roots of a quadric: the nearer root in
  * [tmin, tmax] whose point passes the shape's clipping (z range, phimax),
