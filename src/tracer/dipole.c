@@ -147,7 +147,8 @@ mt_status mt__dipole_irradiance(const mt_scene *s, uint64_t seed, int nthreads, 
             double t = now_s();
             if (t - last >= 0.25 || finished >= total) {
                 double f = total > 0 ? (double)finished / total : 1, el = t - t0;
-                if (finished < total || before < total)
+                /* the line for 100% is drawn once, after the workers are joined */
+                if (finished < total)
                     o->stage(o->progress_ctx, "computing irradiance", f, total, el, f > 0 ? el * (1 - f) / f : -1);
                 last = t;
             }
