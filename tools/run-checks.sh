@@ -3,44 +3,78 @@
 # they print, and ends with "N passed, N failed". Exit status 1 on any failure
 # (a FAIL line, or a binary that exits non-zero or crashes).
 # usage: run-checks.sh BUILD_DIR PRECISION TEST_BINARY...
+#
+# The programs run CHECK_JOBS at a time (default: the number of processors),
+# the longest first; each one's output is printed whole, in the order they
+# were listed, as soon as it and those before it have finished, so the log
+# reads the same whatever the number of jobs. CHECK_JOBS=1 runs them one
+# after the other.
 build=$1; precision=$2; shift 2
+dir=$(mktemp -d "${TMPDIR:-/tmp}/materia-check.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+jobs=${CHECK_JOBS:-$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+n=0
+# quote: one argument as a single-quoted shell word
+quote() { printf "'%s'" "$(printf '%s' "$1" | sed "s/'/'\\\\''/g")"; }
+# job NAME COMMAND...: one entry of the run, written as a script of its own
+job() {
+    n=$((n + 1))
+    printf '%s\n' "$1" > "$dir/$n.name"; shift
+    { for a in "$@"; do quote "$a"; printf ' '; done; echo; } > "$dir/$n.sh"
+}
+# the conformance suite and the tests that render or drive child processes
+# take minutes; they start first so that the short ones fill the gaps
+for t in "$@"; do
+    case $(basename "$t") in test_impl|test_golden|test_pbrt_renders|test_dipole|test_render_*) job "$(basename "$t")" "$t" ;; esac
+done
+# shellcheck disable=SC2086
+job materia-conformance "$build/bin/materia-conformance" ${CONF_ARGS:-}
+for t in "$@"; do
+    case $(basename "$t") in test_impl|test_golden|test_pbrt_renders|test_dipole|test_render_*) ;; *) job "$(basename "$t")" "$t" ;; esac
+done
+# docs/REFERENCE.md against the tables it is generated from
+[ -n "${REF_GEN:-}" ] && job reference "$REF_GEN" --check docs/REFERENCE.md
+# make install into a temporary directory and a program built against it
+# (not under the sanitizers: a program linking the library would need them)
+[ -z "${SANITIZE:-}" ] && job check-install sh tools/check-install.sh "$build" "$precision"
+
+# the runner: each job's output goes to N.log, its exit status to N.rc
+i=0
+while [ "$i" -lt "$n" ]; do i=$((i + 1)); echo "$i"; done |
+    xargs -P "$jobs" -I{} sh -c 'sh "$1/$2.sh" > "$1/$2.log" 2>&1; echo $? > "$1/$2.rc.tmp"; mv "$1/$2.rc.tmp" "$1/$2.rc"' sh "$dir" {} &
+runner=$!
+
 passed=0; failed=0; xfailed=0; skipped=0
-log=$(mktemp "${TMPDIR:-/tmp}/materia-check.XXXXXX") || exit 1
-trap 'rm -f "$log"' EXIT INT TERM
-run() {
-    name=$1; shift
-    "$@" >"$log" 2>&1
-    rc=$?
-    cat "$log"
+i=0
+while [ "$i" -lt "$n" ]; do
+    i=$((i + 1))
+    while [ ! -f "$dir/$i.rc" ]; do
+        if ! kill -0 "$runner" 2>/dev/null && [ ! -f "$dir/$i.rc" ]; then
+            echo "FAIL $(cat "$dir/$i.name"): the runner stopped before it finished"
+            echo 125 > "$dir/$i.rc"
+            break
+        fi
+        sleep 1
+    done
+    log=$dir/$i.log; rc=$(cat "$dir/$i.rc")
+    [ -f "$log" ] && cat "$log" || : > "$log"
     p=$(grep -c '^PASS' "$log"); f=$(grep -c '^FAIL' "$log")
     x=$(grep -c '^XFAIL' "$log"); s=$(grep -c '^SKIP' "$log")
     passed=$((passed + p)); failed=$((failed + f)); xfailed=$((xfailed + x)); skipped=$((skipped + s))
     if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
-        echo "FAIL $name: exited with status $rc"
+        echo "FAIL $(cat "$dir/$i.name"): exited with status $rc"
         failed=$((failed + 1))
     fi
-}
-for t in "$@"; do
-    run "$(basename "$t")" "$t"
 done
-# docs/REFERENCE.md against the tables it is generated from
-if [ -n "${REF_GEN:-}" ]; then
-    run reference "$REF_GEN" --check docs/REFERENCE.md
-fi
-# make install into a temporary directory and a program built against it
-# (not under the sanitizers: a program linking the library would need them)
+wait "$runner" 2>/dev/null
 if [ -n "${SANITIZE:-}" ]; then
     echo "SKIP install: not tested in a sanitized build"
     skipped=$((skipped + 1))
-else
-    run check-install sh tools/check-install.sh "$build" "$precision"
 fi
 if [ -n "${CXX_SKIP:-}" ]; then
     echo "SKIP c++ program: $CXX_SKIP"
     skipped=$((skipped + 1))
 fi
-# shellcheck disable=SC2086
-run materia-conformance "$build/bin/materia-conformance" ${CONF_ARGS:-}
 echo "precision $precision: $xfailed expected failures (pbrt-v2 errata), $skipped skipped"
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
