@@ -234,6 +234,10 @@ $(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< $(TSUP_OBJ) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 
+$(BUILD)/tests/test_strbuf: $(BUILD)/obj/tests/test_strbuf.o $(BUILD)/obj/conformance/strbuf.o $(TSUP_OBJ) $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+
 # the vectors' test reads the --impl catalog of configurations
 $(BUILD)/tests/test_vectors: $(BUILD)/obj/tests/test_vectors.o $(BUILD)/obj/conformance/impl_catalog.o $(BUILD)/obj/conformance/strbuf.o $(TSUP_OBJ) $(STATIC_LIB)
 	@mkdir -p $(dir $@)

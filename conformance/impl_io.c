@@ -43,6 +43,22 @@ static void put(cf_impl *im, const char *fmt, ...)
     va_end(ap);
 }
 
+/* Appends "WORD v0 ... v5\n", each value as %.9g of a float (cf_format_g9:
+ * the same text as printf's, without its cost). */
+static void put_query(cf_impl *im, const char *word, const float v[6])
+{
+    char line[256];
+    size_t len = strlen(word);
+    int i;
+    memcpy(line, word, len);
+    for (i = 0; i < 6; ++i) {
+        line[len++] = ' ';
+        len += (size_t)cf_format_g9(line + len, sizeof line - len, v[i]);
+    }
+    line[len++] = '\n';
+    cf_strbuf_append(&im->text, line, len); /* a failure stays in text.failed: send() reports it */
+}
+
 /* Sends the batch in im->text (n query lines, then the mode line). */
 static int send(cf_impl *im, int n)
 {
@@ -155,9 +171,10 @@ int cf_impl_eval(cf_impl *im, int n, const mt_vec3 *wo, const mt_vec3 *wi, cf_ev
         return 0;
     }
     cf_strbuf_clear(&im->text);
-    for (i = 0; i < n; ++i)
-        put(im, "eval %.9g %.9g %.9g %.9g %.9g %.9g\n", (double)(float)wo[i].x, (double)(float)wo[i].y,
-            (double)(float)wo[i].z, (double)(float)wi[i].x, (double)(float)wi[i].y, (double)(float)wi[i].z);
+    for (i = 0; i < n; ++i) {
+        const float v[6] = {(float)wo[i].x, (float)wo[i].y, (float)wo[i].z, (float)wi[i].x, (float)wi[i].y, (float)wi[i].z};
+        put_query(im, "eval", v);
+    }
     if (send(im, n)) return -1;
     for (i = 0; i < n; ++i) {
         double v[4];
@@ -191,9 +208,10 @@ int cf_impl_sample(cf_impl *im, int n, const mt_vec3 *wo, const float (*u)[3], c
         return 0;
     }
     cf_strbuf_clear(&im->text);
-    for (i = 0; i < n; ++i)
-        put(im, "sample %.9g %.9g %.9g %.9g %.9g %.9g\n", (double)(float)wo[i].x, (double)(float)wo[i].y,
-            (double)(float)wo[i].z, (double)u[i][0], (double)u[i][1], (double)u[i][2]);
+    for (i = 0; i < n; ++i) {
+        const float v[6] = {(float)wo[i].x, (float)wo[i].y, (float)wo[i].z, u[i][0], u[i][1], u[i][2]};
+        put_query(im, "sample", v);
+    }
     if (send(im, n)) return -1;
     for (i = 0; i < n; ++i) {
         double v[8];

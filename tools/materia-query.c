@@ -10,9 +10,11 @@
  * per query. Exit status 0, 1 on an error of the tool itself (out of memory,
  * output failed), 2 on a wrong command line.
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "materia.h"
 #include "materia/query.h"
 
@@ -24,13 +26,67 @@ static void warn(void *ctx, const char *file, int line, const char *msg)
     else fprintf(stderr, "warning %s\n", msg);
 }
 
+/* Standard input, read with read(2) into a buffer of our own so that the
+ * tool knows when it has answered every line it has: it writes its answers
+ * out then, before it waits for more input. A client that sends one line
+ * and waits gets its answer at once; one that keeps the pipe full (a batch
+ * of queries) gets the answers in large writes instead of one system call,
+ * and one wake-up of the client, per answer. */
+typedef struct reader {
+    char *buf;
+    size_t start, len, cap;
+    int eof;
+} reader;
+
+/* The next line without its newline (NUL-terminated in the buffer, valid
+ * until the next call), or NULL at the end of input; *oom on out of memory. */
+static char *next_line(reader *r, int *oom)
+{
+    for (;;) {
+        char *nl = r->len > r->start ? memchr(r->buf + r->start, '\n', r->len - r->start) : NULL;
+        ssize_t got;
+        if (nl) {
+            char *l = r->buf + r->start;
+            *nl = 0;
+            r->start = (size_t)(nl - r->buf) + 1;
+            return l;
+        }
+        if (r->eof) {
+            char *l = r->buf + r->start;
+            if (r->len == r->start) return NULL;
+            r->buf[r->len] = 0; /* a last line without a newline (room kept below) */
+            r->start = r->len;
+            return l;
+        }
+        fflush(stdout); /* every line read is answered: out before waiting */
+        memmove(r->buf, r->buf + r->start, r->len - r->start);
+        r->len -= r->start;
+        r->start = 0;
+        if (r->cap - r->len < 4097) {
+            size_t nc = r->cap ? 2 * r->cap : 1 << 16;
+            char *n = realloc(r->buf, nc);
+            if (!n) {
+                *oom = 1;
+                return NULL;
+            }
+            r->buf = n;
+            r->cap = nc;
+        }
+        got = read(0, r->buf + r->len, r->cap - r->len - 1);
+        if (got > 0)
+            r->len += (size_t)got;
+        else if (got == 0 || errno != EINTR)
+            r->eof = 1; /* the end, or an input that cannot be read: the same */
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *dir = NULL;
     mt_query *q;
     mt_error err;
-    char *line = NULL, out[4096];
-    size_t cap = 0;
+    char out[4096];
+    reader in = {NULL, 0, 0, 0, 0};
     int i;
     for (i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--dir") && i + 1 < argc)
@@ -56,34 +112,22 @@ int main(int argc, char **argv)
         return 1;
     }
     mt_query_set_warning(q, warn, NULL);
+    setvbuf(stdout, NULL, _IOFBF, 1 << 16);
     for (;;) {
-        /* getline-free line reading: C99 has only fgets */
-        size_t len = 0;
-        int got = 0;
-        for (;;) {
-            if (cap - len < 2) {
-                char *n = realloc(line, cap ? 2 * cap : 4096);
-                if (!n) {
-                    fprintf(stderr, "%s: out of memory\n", argv[0]);
-                    return 1;
-                }
-                line = n;
-                cap = cap ? 2 * cap : 4096;
-            }
-            if (!fgets(line + len, (int)(cap - len), stdin)) break;
-            got = 1;
-            len += strlen(line + len);
-            if (len && line[len - 1] == '\n') break;
+        int oom = 0;
+        char *line = next_line(&in, &oom);
+        size_t len;
+        if (oom) {
+            fprintf(stderr, "%s: out of memory\n", argv[0]);
+            return 1;
         }
-        if (!got) break;
-        while (len && (line[len - 1] == '\n' || line[len - 1] == '\r')) line[--len] = 0;
-        if (mt_query_line(q, line, out, sizeof out)) {
-            puts(out);
-            fflush(stdout);
-        }
+        if (!line) break;
+        len = strlen(line);
+        while (len && line[len - 1] == '\r') line[--len] = 0;
+        if (mt_query_line(q, line, out, sizeof out)) puts(out);
     }
     if (mt_query_finish(q, out, sizeof out)) puts(out);
-    free(line);
+    free(in.buf);
     mt_query_destroy(q);
-    return ferror(stdout) ? 1 : 0;
+    return fflush(stdout) || ferror(stdout) ? 1 : 0;
 }

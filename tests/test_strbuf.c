@@ -1,0 +1,82 @@
+/*
+ * The shared text buffer of the conformance suite (conformance/strbuf.c):
+ * appends grow it and keep it NUL-terminated, a long line goes in whole,
+ * and cf_format_g9 writes exactly what printf("%.9g") writes for every
+ * float it is given (the query lines --impl sends are written with it, so
+ * a difference would change the inputs an implementation reads).
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include "../conformance/strbuf.h"
+#include "support/check.h"
+
+static uint32_t rng(uint32_t *s)
+{
+    *s ^= *s << 13;
+    *s ^= *s >> 17;
+    *s ^= *s << 5;
+    return *s;
+}
+
+/* 0 when cf_format_g9 and snprintf agree on f; else prints both. */
+static int differs(float f, char *first, size_t n)
+{
+    char a[64], b[64];
+    int la = cf_format_g9(a, sizeof a, f), lb = snprintf(b, sizeof b, "%.9g", (double)f);
+    if (la == lb && !strcmp(a, b)) return 0;
+    if (!first[0]) snprintf(first, n, "%a: \"%s\", printf \"%s\"", (double)f, a, b);
+    return 1;
+}
+
+int main(void)
+{
+    cf_strbuf b = {0, 0, 0, 0};
+    char big[100000], first[200] = "";
+    static const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 1e-9f, 9.99999e-10f, 1e-5f, 9.9999999e-5f, 1e-4f,
+                                    0.1f, 0.3f, 0.7f, 0.03f, 123456789.0f, 999999999.0f, 1e9f, 5e8f, 1e-45f, 1e-38f,
+                                    3.4e38f, 16777216.0f, 0.999999940f, 1.00000012f};
+    long i, bad = 0, tried = 0;
+    uint32_t s = 2463534242u;
+    /* appends */
+    cf_strbuf_printf(&b, "%s %d", "eval", 3);
+    cf_strbuf_append(&b, " x", 2);
+    t_check(b.s && !strcmp(b.s, "eval 3 x") && b.n == 8 && !b.failed, "strbuf: printf and append", "got \"%s\"",
+            b.s ? b.s : "(null)");
+    memset(big, 'a', sizeof big - 1);
+    big[sizeof big - 1] = 0;
+    cf_strbuf_printf(&b, "%s\n", big);
+    t_check(b.n == 8 + sizeof big && b.s[b.n - 1] == '\n' && b.s[b.n] == 0 && b.cap > b.n,
+            "strbuf: a line longer than the first allocation goes in whole", "length %zu", b.n);
+    b.failed = 1; /* as after an allocation failure */
+    t_check(cf_strbuf_printf(&b, "more") == -1 && cf_strbuf_append(&b, "more", 4) == -1 && b.n == 8 + sizeof big,
+            "strbuf: after a failure, appends fail too (no hole in the text)", "length %zu", b.n);
+    cf_strbuf_clear(&b);
+    t_check(b.n == 0 && !b.failed && b.s[0] == 0 && !cf_strbuf_printf(&b, "ok"), "strbuf: clear", "n %zu", b.n);
+    cf_strbuf_free(&b);
+    /* %.9g: the special values, random bit patterns (every magnitude, NaN,
+     * infinities, subnormals) and values in [-1, 1] as directions have,
+     * and a float on each side of every power of ten */
+    for (i = 0; i < (long)(sizeof special / sizeof special[0]); ++i, ++tried) bad += differs(special[i], first, sizeof first);
+    for (i = 0; i < 1000000; ++i, ++tried) {
+        uint32_t bits = rng(&s);
+        float f;
+        if (i & 1) {
+            memcpy(&f, &bits, sizeof f);
+        } else {
+            f = (float)((double)(bits >> 8) / 16777216.0);
+            if (bits & 1) f = -f;
+            if (i % 6 == 2) f = f * f * f * f;
+        }
+        bad += differs(f, first, sizeof first);
+    }
+    for (i = -46; i <= 38; ++i, tried += 3) {
+        float p = (float)pow(10, (double)i);
+        bad += differs(p, first, sizeof first) + differs(nextafterf(p, 0), first, sizeof first) +
+               differs(nextafterf(p, INFINITY), first, sizeof first);
+    }
+    t_check(bad == 0, "cf_format_g9 writes what printf(\"%.9g\") writes", "%ld of %ld differ, first %s", bad, tried,
+            first);
+    return t_status();
+}
