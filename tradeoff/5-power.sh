@@ -65,12 +65,16 @@ $plot
 - With \`make check\`'s settings (1e5 samples, 32x33 cells) the power is $(pw 32x33 100000 0.05) for a
   5% error, $(pw 32x33 100000 0.02) for 2%, $(pw 32x33 100000 0.01) for 1% and $(pw 32x33 100000 0.005) for 0.5%. With
   \`check-full\`'s (4e6, 100x101): $(pw 100x101 4000000 0.05), $(pw 100x101 4000000 0.02), $(pw 100x101 4000000 0.01) and $(pw 100x101 4000000 0.005)
-  (empty where the run stopped below 4e6 samples: QUICK).
+  $( [ "$QUICK" = 1 ] && echo "(none: QUICK stops at 1e6 samples)" || echo "(4e6 samples are what 2% needs)").
 - Samples needed for a power of 0.9 with 32x33 cells: 5%: $(least 32x33 0.05), 2%: $(least 32x33 0.02),
   1%: $(least 32x33 0.01), 0.5%: $(least 32x33 0.005); with 100x101 cells: 5%: $(least 100x101 0.05),
   2%: $(least 100x101 0.02), 1%: $(least 100x101 0.01), 0.5%: $(least 100x101 0.005). The
-  samples needed grow as 1/eps^2; finer cells cost power at a fixed sample count for an error
-  this smooth (more degrees of freedom for the same deviation).
+  samples needed grow roughly as 1/eps^2 (the chi-square's noncentrality is about n eps^2);
+  finer cells cost power at a fixed sample count for an error this smooth (more degrees of
+  freedom for the same deviation), and pay off only for errors confined to small regions.
+  \`make check\`'s chi-square catches gross errors (a wrong lobe, a sampler ignoring its
+  parameter, a pdf off by tens of percent somewhere); a smooth error of a few percent needs
+  \`check-full\` or more.
 - False alarms (no planted error): $fp runs over every setting, as the significance promises.
 - Cost of one test: sampling $(tsamp 100000) s at 1e5 samples, $(tsamp 1000000) s at 1e6$( [ -n "$(tsamp 4000000)" ] && echo ", $(tsamp 4000000) s at 4e6"); the
   expected counts' cubature $(tcub 16x17) s for 16x17 cells, $(tcub 32x33) s for 32x33 and $(tcub 100x101) s for 100x101
