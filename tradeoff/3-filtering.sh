@@ -16,9 +16,16 @@ PROG=$MT_TRADEOFF/filtering
 [ -x "$PROG" ] || { echo "3-filtering: $PROG not found (build it first)" >&2; exit 1; }
 mkdir -p "$OUT"
 START=$(date +%s)
-if [ "$QUICK" = 1 ]; then "$PROG" --out "$OUT" --quick; else "$PROG" --out "$OUT"; fi ||
+if [ "${FILTERING_REPORT_ONLY:-0}" = 1 ] && [ -s "$OUT/3-filtering-checker.csv" ]; then :
+elif [ "$QUICK" = 1 ]; then "$PROG" --out "$OUT" --quick; else "$PROG" --out "$OUT"; fi ||
     { echo "3-filtering: $PROG failed" >&2; exit 1; }
-ELAPSED=$(($(date +%s) - START))
+# FILTERING_REPORT_ONLY=1: the plots and section again from an earlier run's CSV
+if [ "${FILTERING_REPORT_ONLY:-0}" = 1 ] && [ -s "$OUT/3-filtering.seconds" ]; then
+    ELAPSED=$(cat "$OUT/3-filtering.seconds")
+else
+    ELAPSED=$(($(date +%s) - START))
+    echo "$ELAPSED" > "$OUT/3-filtering.seconds"
+fi
 I=$OUT/3-filtering-imagemap.csv
 C=$OUT/3-filtering-checker.csv
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/mt-filtering.XXXXXX") || exit 1
@@ -68,7 +75,7 @@ if [ -n "$GNUPLOT" ]; then
         # the data files here are whitespace-separated (the shared style reads CSV)
         echo "set datafile separator whitespace"
         echo "set output '$OUT/$1'"
-        echo "set grid; set logscale xy; set format y '10^{%L}'; set format x '%g'; set key below maxrows 3"
+        echo "set grid; set logscale xy; set format y '10^{%L}'; set format x '%g'; set key below horizontal maxcols 2 width -4; set bmargin 9"
         echo "set multiplot layout 1,2"
     }
     {
