@@ -10,7 +10,7 @@
 #
 # Environment (tools/run-tradeoff.sh sets the first ones): MT_BIN,
 # MT_TRADEOFF, OUT, QUICK, SHARED, GNUPLOT, TRADEOFF_DIR; and to change the
-# sweep: SPP_SCENES (golden scene names), SPP_LIST, SPP_REF, SPP_REAL (real
+# sweep: SPP_SCENES (golden scene names, "none" for none), SPP_LIST, SPP_REF, SPP_REAL (real
 # scene names of ../shared/reference/scenes, "none" for none), SPP_REAL_LIST,
 # SPP_REAL_REF, SPP_REAL_SCALE (resolution divisor of the real scenes),
 # SPP_THREADS (2); SPP_REPORT_ONLY=1 rewrites the summary, plots and
@@ -51,6 +51,7 @@ REALSPPS=${SPP_REAL_LIST:-"1 4 16 64 256"}
 REALREF=${SPP_REAL_REF:-2048}
 REALSCALE=${SPP_REAL_SCALE:-4}
 [ "$REAL" = none ] && REAL=
+[ "$SCENES" = none ] && SCENES=
 
 for f in "$RENDER" "$IMGERR"; do
     [ -x "$f" ] || { echo "2-spp: $f not found (build it first)" >&2; exit 1; }
