@@ -143,14 +143,14 @@ static mt_real sum_pdf(const mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, unsigned flags)
     return matching > 0 ? pdf / matching : 0;
 }
 
-mt_rgb mt__bsdf_f_pair(const mt_bsdf *b, mt_vec3 woW, mt_vec3 wiW, unsigned flags, mt__bsdf_pair *pair)
+mt_rgb mt__bsdf_f_pair(const mt_bsdf *b, const mt__bsdf_wo *o, mt_vec3 wiW, unsigned flags, mt__bsdf_pair *pair)
 {
     unsigned fl;
-    pair->ok = mt__admit_dir(&woW) && mt__admit_dir(&wiW);
+    pair->ok = o->ok && mt__admit_dir(&wiW);
     if (!pair->ok) return mt_rgb_black();
-    pair->wo = mt_frame_to_local(&b->frame, woW);
+    pair->wo = o->local;
     pair->wi = mt_frame_to_local(&b->frame, wiW);
-    fl = leak_flags(b, woW, wiW, flags);
+    fl = leak_flags(b, o->w, wiW, flags);
     if (!fl) return mt_rgb_black();
     return sum_f(b, pair->wo, pair->wi, fl, NULL, mt_rgb_black());
 }
@@ -171,15 +171,29 @@ static mt_bsdf_sample failed_sample(void)
     return s;
 }
 
+void mt__bsdf_wo_init(const mt_bsdf *b, mt_vec3 woW, mt__bsdf_wo *o)
+{
+    o->w = woW;
+    o->ok = mt__admit_dir(&o->w);
+    if (o->ok) o->local = mt_frame_to_local(&b->frame, o->w);
+}
+
 mt_bsdf_sample mt_bsdf_sample_f(const mt_bsdf *b, mt_vec3 woW, mt_real uc, mt_real u1,
                                 mt_real u2, unsigned flags)
+{
+    mt__bsdf_wo o;
+    mt__bsdf_wo_init(b, woW, &o);
+    return mt__bsdf_sample_f_wo(b, &o, uc, u1, u2, flags);
+}
+
+mt_bsdf_sample mt__bsdf_sample_f_wo(const mt_bsdf *b, const mt__bsdf_wo *o, mt_real uc, mt_real u1,
+                                    mt_real u2, unsigned flags)
 {
     mt_bsdf_sample s = failed_sample();
     int matching, which, i;
     const mt_bxdf *bxdf, *match[MT_MAX_BXDFS];
-    mt_vec3 wo, wi;
-    if (!mt__admit_dir(&woW) || !(uc >= 0 && uc < 1) || !(u1 >= 0 && u1 < 1) ||
-        !(u2 >= 0 && u2 < 1))
+    mt_vec3 wo, wi, woW = o->w;
+    if (!o->ok || !(uc >= 0 && uc < 1) || !(u1 >= 0 && u1 < 1) || !(u2 >= 0 && u2 < 1))
         return s;
     /* pbrt-v2: which = min(Floor2Int(u * matching), matching - 1), then the
      * which-th matching component; u >= 0, so truncation is the floor */
@@ -189,7 +203,7 @@ mt_bsdf_sample mt_bsdf_sample_f(const mt_bsdf *b, mt_vec3 woW, mt_real uc, mt_re
     which = (int)(uc * matching);
     if (which > matching - 1) which = matching - 1;
     bxdf = match[which];
-    wo = mt_frame_to_local(&b->frame, woW);
+    wo = o->local;
     s.pdf = 0;
     s.f = bxdf->ops->sample_f(bxdf, wo, &wi, u1, u2, &s.pdf);
     if (s.pdf == 0) return failed_sample();

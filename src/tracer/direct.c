@@ -5,7 +5,6 @@
  */
 #include "materia/sampling.h"
 #include "tracer/shading.h"
-#include "bsdf_internal.h"
 
 int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
                      const mt_raydiff *rd, mt__vertex *v)
@@ -22,6 +21,7 @@ int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
     v->p = v->dgs.p;
     v->n = mt_bsdf_shading(v->bsdf)->n; /* after bump mapping, as pbrt-v2's dgShading.nn */
     v->wo = mt_v3_normalize(mt_v3_neg(ray->d));
+    mt__bsdf_wo_init(v->bsdf, v->wo, &v->bwo);
     return 1;
 }
 
@@ -89,7 +89,7 @@ mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt_
     mt__light_sample_l(light, &v->sf, v->p, lu[0], lu[1], lu[2], &ls);
     if (ls.pdf > 0 && !mt_rgb_is_black(ls.Li)) {
         mt__bsdf_pair pair;
-        mt_rgb f = mt__bsdf_f_pair(v->bsdf, v->wo, ls.wi, NON_SPECULAR, &pair);
+        mt_rgb f = mt__bsdf_f_pair(v->bsdf, &v->bwo, ls.wi, NON_SPECULAR, &pair);
         if (!mt_rgb_is_black(f) && !mt_geometry_occluded(s->geom, &ls.shadow)) {
             mt_real w = 1;
             if (!delta) w = mt_power_heuristic(1, ls.pdf, 1, mt__bsdf_pdf_pair(v->bsdf, &pair, NON_SPECULAR));
@@ -98,7 +98,7 @@ mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt_
     }
     if (delta) return Ld;
     /* sample the BSDF */
-    bs = mt_bsdf_sample_f(v->bsdf, v->wo, bu[0], bu[1], bu[2], NON_SPECULAR);
+    bs = mt__bsdf_sample_f_wo(v->bsdf, &v->bwo, bu[0], bu[1], bu[2], NON_SPECULAR);
     if (!mt_rgb_is_black(bs.f) && bs.pdf > 0) {
         mt_real w = 1;
         mt_rgb Li;

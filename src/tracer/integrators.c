@@ -89,7 +89,7 @@ static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *fi
         L = mt_rgb_add(L, mt_rgb_mul(beta, mt__sample_one_light(tc, &v, bounces, comp)));
         /* the next direction: pair 2's second value and pair 4 */
         mt__vertex_sample(tc, bounces, 4, 0, 1, dir);
-        bs = mt_bsdf_sample_f(v.bsdf, v.wo, comp[1], dir[0], dir[1], MT_BSDF_ALL);
+        bs = mt__bsdf_sample_f_wo(v.bsdf, &v.bwo, comp[1], dir[0], dir[1], MT_BSDF_ALL);
         if (mt_rgb_is_black(bs.f) || bs.pdf == 0) break;
         specular = (bs.type & MT_BSDF_SPECULAR) != 0;
         beta = mt_rgb_mul(beta, mt_rgb_scale(bs.f, mt_v3_absdot(bs.wi, v.n) / bs.pdf));
@@ -128,7 +128,7 @@ static mt_rgb specular(mt__thread_ctx *tc, const mt_raydiff *rd, const mt__verte
 {
     const mt_diffgeom *dgs = mt_bsdf_shading(v->bsdf);
     mt_vec3 n = v->n, wo = v->wo, wi;
-    mt_bsdf_sample bs = mt_bsdf_sample_f(v->bsdf, wo, u[0], u[1], u[2], lobe | MT_BSDF_SPECULAR);
+    mt_bsdf_sample bs = mt__bsdf_sample_f_wo(v->bsdf, &v->bwo, u[0], u[1], u[2], lobe | MT_BSDF_SPECULAR);
     mt_raydiff next;
     mt_rgb Li;
     if (!(bs.pdf > 0) || mt_rgb_is_black(bs.f) || mt_v3_absdot(bs.wi, n) == 0) return mt_rgb_black();

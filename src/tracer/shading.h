@@ -7,6 +7,7 @@
 #define MT_TRACER_SHADING_H
 
 #include "tracer/scene.h"
+#include "bsdf_internal.h"
 
 typedef struct mt__vertex {
     mt_surface sf;             /* the intersection (geometric dg, error bounds) */
@@ -14,6 +15,7 @@ typedef struct mt__vertex {
     mt_bsdf *bsdf;
     const mt__prim_info *info;
     mt_vec3 p, n, wo;          /* pbrt-v2's bsdf->dgShading.p, .nn and -ray.d */
+    mt__bsdf_wo bwo;           /* wo admitted and in the BSDF's frame, for its queries */
 } mt__vertex;
 
 /* The vertex at hit of ray; rd (may be NULL) gives the ray differentials for
