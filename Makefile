@@ -364,8 +364,8 @@ QUICK ?= 0
 TRADEOFF_ONLY ?=
 TRADEOFF_OUT ?= build/tradeoff
 tradeoff:
-	$(MAKE) --no-print-directory PRECISION=float SANITIZE= BUILD=build/float all tradeoffs build/float/tests/impl-wrong
-	$(MAKE) --no-print-directory PRECISION=double SANITIZE= BUILD=build/double all tradeoffs build/double/tests/impl-wrong
+	$(MAKE) --no-print-directory PRECISION=float SANITIZE= BUILD=build/float all tradeoffs
+	$(MAKE) --no-print-directory PRECISION=double SANITIZE= BUILD=build/double all tradeoffs
 	QUICK=$(QUICK) TRADEOFF_ONLY=$(TRADEOFF_ONLY) sh tools/run-tradeoff.sh build/float build/double $(TRADEOFF_OUT)
 
 # libFuzzer on each target for FUZZ_SECONDS seconds (docs/FUZZING.md): the
