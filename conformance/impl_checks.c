@@ -411,21 +411,70 @@ static mt_vec3 perturb(mt_vec3 w, int k)
     return mt_v3((mt_real)(x / l), (mt_real)(y / l), (mt_real)(z / l));
 }
 
-/* The spread of materia's f and pdf when wo or wi moves by 4 epsilons. */
-static void spread(const cf_impl *ref, mt_vec3 wo, mt_vec3 wi, const cf_eval *v, double s[4])
+/* v rotated by angle t about the unit axis a (Rodrigues). */
+static mt_vec3 rotate(mt_vec3 v, const double a[3], double t)
+{
+    double c = cos(t), sn = sin(t), d = (a[0] * v.x + a[1] * v.y + a[2] * v.z) * (1 - c);
+    double x = v.x * c + (a[1] * v.z - a[2] * v.y) * sn + a[0] * d;
+    double y = v.y * c + (a[2] * v.x - a[0] * v.z) * sn + a[1] * d;
+    double z = v.z * c + (a[0] * v.y - a[1] * v.x) * sn + a[2] * d;
+    return mt_v3((mt_real)x, (mt_real)y, (mt_real)z);
+}
+
+/* How far rounding can tilt the shading frame, in radians. The frame is
+ * the input n (exact, so 0: the rotations of wo and wi below cover its
+ * normalization), except under a bump map: pbrt-v2's Bump() takes the
+ * forward difference (d(p + du dpdu) - d(p)) / du, so the roundings of the
+ * shifted point and of d (a few eps times 1 + |p|) are divided by the step
+ * du (0.01 without differentials, bump.c): measured float against double,
+ * `matte with a bump map` at its point tilts by 6e-6 = 50 eps with du
+ * 0.01, and this gives 4 eps (1 + |p|) / du = 700 eps there. */
+static double frame_tilt(const cf_impl_config *c, const cf_impl *ref)
+{
+    const mt_diffgeom *dg = mt_bsdf_shading(ref->bsdf);
+    double du, dv, p;
+    int j, bump = 0;
+    for (j = 0; j < CI_MAX_LINES && c->lines[j]; ++j) bump |= strstr(c->lines[j], "bumpmap") != NULL;
+    if (!bump) return 0;
+    du = 0.5 * (fabs((double)dg->dudx) + fabs((double)dg->dudy));
+    dv = 0.5 * (fabs((double)dg->dvdx) + fabs((double)dg->dvdy));
+    du = fmin(du > 0 ? du : 0.01, dv > 0 ? dv : 0.01);
+    p = sqrt((double)mt_v3_dot(dg->p, dg->p));
+    return 4 * EPSF * (1 + p) / du;
+}
+
+/* The spread of materia's f and pdf when wo or wi moves by 4 epsilons, and
+ * when both turn by the frame's tilt (a tilted frame, seen from the BSDF). */
+static void spread(const cf_impl *ref, double tilt, mt_vec3 wo, mt_vec3 wi, const cf_eval *v, double s[4])
 {
     int j, k;
+    const mt_vec3 n = mt_bsdf_shading(ref->bsdf)->n;
     for (k = 0; k < 4; ++k) s[k] = 0;
-    for (j = 0; j < 8; ++j) {
-        mt_vec3 a = j < 4 ? perturb(wo, j) : wo, b = j < 4 ? wi : perturb(wi, j - 4);
-        mt_rgb f = mt_bsdf_f(ref->bsdf, a, b, MT_BSDF_ALL);
-        double p = mt_bsdf_pdf(ref->bsdf, a, b, MT_BSDF_ALL);
+    for (j = 0; j < (tilt > 0 ? 12 : 8); ++j) {
+        mt_vec3 a = j < 4 ? perturb(wo, j) : wo, b = j >= 4 && j < 8 ? perturb(wi, j - 4) : wi;
+        mt_rgb f;
+        double p;
+        if (j >= 8) { /* about an axis perpendicular to n: perturb(n) - n */
+            mt_vec3 t = perturb(n, j < 10 ? 0 : 2);
+            double ax[3] = {t.y * n.z - t.z * n.y, t.z * n.x - t.x * n.z, t.x * n.y - t.y * n.x}, l;
+            l = sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+            if (!(l > 0)) continue;
+            for (k = 0; k < 3; ++k) ax[k] /= l;
+            a = rotate(wo, ax, (j & 1) ? -tilt : tilt);
+            b = rotate(wi, ax, (j & 1) ? -tilt : tilt);
+        }
+        f = mt_bsdf_f(ref->bsdf, a, b, MT_BSDF_ALL);
+        p = mt_bsdf_pdf(ref->bsdf, a, b, MT_BSDF_ALL);
         for (k = 0; k < 3; ++k) s[k] = fmax(s[k], fabs(f.c[k] - v->f[k]));
         s[3] = fmax(s[3], fabs(p - v->pdf));
     }
 }
 
-static double bound(double v, double s, double vmax) { return 4 * s + 64 * EPSF * fabs(v) + 1e-6 * vmax + 1e-30; }
+/* 4 times the spread, the roundings of the value itself (rel: 64 eps, and 3
+ * e eps for a lobe cos^e, whose cos theta_h rounds by an eps that the power
+ * multiplies by e; noise_allowance), and 1e-6 of the configuration's
+ * largest value (a tail that underflows in float). */
+static double bound(double v, double s, double rel, double vmax) { return 4 * s + rel * fabs(v) + 1e-6 * vmax + 1e-30; }
 
 /* ---- the checks ------------------------------------------------------------ */
 typedef struct acc {
@@ -650,7 +699,8 @@ static int pair_checks(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
     int np = nwo * PER + 512, i, k, m = 0, r = 0;
     mt_vec3 *a = malloc((size_t)np * 2 * sizeof *a), *b = malloc((size_t)np * 2 * sizeof *b);
     cf_eval *et = malloc((size_t)np * 2 * sizeof *et), *er = malloc((size_t)np * 2 * sizeof *er);
-    double fmaxv = 0, pmax = 0, worst_f = 0, worst_p = 0, worst_r = 0;
+    double fmaxv = 0, pmax = 0, worst_f = 0, worst_p = 0, worst_r = 0, rel = noise_allowance(c),
+           tilt = frame_tilt(c, ref);
     long bad_f = 0, bad_p = 0, bad_r = 0, nonzero = 0, skipped = 0;
     mt_vec3 ng = mt_bsdf_ng(ref->bsdf), ns = mt_bsdf_shading(ref->bsdf)->n;
     mt_rng rng;
@@ -692,12 +742,12 @@ static int pair_checks(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
     }
     for (i = 0; i < 2 * m; ++i) {
         double s[4], sr[4], ef = 0, ep;
-        spread(ref, a[i], b[i], er + i, s);
+        spread(ref, tilt, a[i], b[i], er + i, s);
         for (k = 0; k < 3; ++k) {
-            double t = bound(er[i].f[k], s[k], fmaxv), e = fabs(et[i].f[k] - er[i].f[k]) / t;
+            double t = bound(er[i].f[k], s[k], rel, fmaxv), e = fabs(et[i].f[k] - er[i].f[k]) / t;
             ef = fmax(ef, isfinite(e) ? e : 1e30);
         }
-        ep = fabs(et[i].pdf - er[i].pdf) / bound(er[i].pdf, s[3], pmax);
+        ep = fabs(et[i].pdf - er[i].pdf) / bound(er[i].pdf, s[3], rel, pmax);
         if (!isfinite(ep)) ep = 1e30;
         worst_f = fmax(worst_f, ef);
         worst_p = fmax(worst_p, ep);
@@ -722,9 +772,9 @@ static int pair_checks(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
             skipped++;
         } else if (i < m && density) {
             double e = 0;
-            spread(ref, a[m + i], b[m + i], er + m + i, sr);
+            spread(ref, tilt, a[m + i], b[m + i], er + m + i, sr);
             for (k = 0; k < 3; ++k) {
-                double t = fmax(bound(er[i].f[k], s[k], fmaxv), bound(er[m + i].f[k], sr[k], fmaxv));
+                double t = fmax(bound(er[i].f[k], s[k], rel, fmaxv), bound(er[m + i].f[k], sr[k], rel, fmaxv));
                 double d = fabs(et[i].f[k] - et[m + i].f[k]) / t;
                 e = fmax(e, isfinite(d) ? d : 1e30);
                 nonzero += et[i].f[k] != 0;
@@ -816,7 +866,7 @@ static int delta_check(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
             for (k = 0; k < 3; ++k) sf[k] = fmax(sf[k], fabs(s.f.c[k] - sr[i].f[k]));
         }
         tdir[i] = 4 * d + 1e-5;
-        for (k = 0; k < 3; ++k) tf[3 * i + k] = bound(sr[i].f[k], sf[k], fm);
+        for (k = 0; k < 3; ++k) tf[3 * i + k] = bound(sr[i].f[k], sf[k], 64 * EPSF, fm);
     }
     /* each test delta sample against materia's of the same wo */
     for (i = 0; i < n; ++i) {
