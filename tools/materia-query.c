@@ -59,7 +59,8 @@ static char *next_line(reader *r, int *oom)
             return l;
         }
         fflush(stdout); /* every line read is answered: out before waiting */
-        memmove(r->buf, r->buf + r->start, r->len - r->start);
+        if (r->start > 0) /* (before the first read there is no buffer yet) */
+            memmove(r->buf, r->buf + r->start, r->len - r->start);
         r->len -= r->start;
         r->start = 0;
         if (r->cap - r->len < 4097) {
