@@ -51,6 +51,7 @@
 #include <string.h>
 #include <time.h>
 #include "materia.h"
+#include "support/timing.h"
 #include "materia/mipmap.h"
 
 #define PI 3.14159265358979323846
@@ -68,19 +69,6 @@ static void die(const char *what, const mt_error *err)
     if (err) mt_error_format(err, buf, sizeof buf);
     fprintf(stderr, "filtering: %s%s%s\n", what, err ? ": " : "", err ? buf : "");
     exit(1);
-}
-
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /* K footprints of major semi-axis len and the given anisotropy, (s, t) in
@@ -216,14 +204,13 @@ static void measure(lookup_fn fn, const void *mode, const footprint *f, const do
     *err_wide = sqrt(ef / k);
     *err_cell = sqrt(ep / k);
     for (r = 0; r < RUNS; r++) {
-        double s = 0, t0 = cpu_now();
+        double s = 0, t0 = t_cpu_now();
         for (p = 0; p < PASSES; p++)
             for (i = 0; i < k; i++) s += fn(mode, &f[i]);
-        t[r] = (cpu_now() - t0) / ((double)PASSES * k) * 1e9;
+        t[r] = (t_cpu_now() - t0) / ((double)PASSES * k) * 1e9;
         sink += s;
     }
-    qsort(t, RUNS, sizeof t[0], cmp_double);
-    *ns = t[RUNS / 2];
+    *ns = t_median(t, RUNS);
 }
 
 static double image_lookup_fn(const void *mode, const footprint *f)

@@ -43,6 +43,7 @@
 #include <string.h>
 #include <time.h>
 #include "materia.h"
+#include "support/timing.h"
 #include "materia/measured.h"
 
 #define NT 4096 /* pairs per timing run */
@@ -69,13 +70,6 @@ static void *xmalloc(size_t n)
     void *p = malloc(n);
     if (!p) die("out of memory", NULL);
     return p;
-}
-
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -128,13 +122,12 @@ static double time_f(brdf b, const pairs *p)
     double t[REPS];
     int r, i, n = p->n < NT ? p->n : NT;
     for (r = 0; r < REPS; r++) {
-        double s = 0, t0 = cpu_now();
+        double s = 0, t0 = t_cpu_now();
         for (i = 0; i < n; i++) s += brdf_f(b, p->wo[i], p->wi[i]).c[1];
-        t[r] = (cpu_now() - t0) / n * 1e9;
+        t[r] = (t_cpu_now() - t0) / n * 1e9;
         sink += s;
     }
-    qsort(t, REPS, sizeof t[0], cmp_double);
-    return t[REPS / 2];
+    return t_median(t, REPS);
 }
 
 /* f of the truth at every pair, 3 values a pair. */
@@ -370,9 +363,9 @@ static void files(const char *out, const char *dir, int quick)
         irr.bxdf = mt_irregular_isotropic_brdf_create(a, MT_MODE_PBRT_V2, m, &err);
         b = mt_bsdf_create(a, MT_MODE_PBRT_V2, &dg, dg.n, 1, &err);
         if (!irr.bxdf || !b || mt_bsdf_add(b, (mt_bxdf *)irr.bxdf, &err) != MT_OK) die(file, &err);
-        t0 = cpu_now();
+        t0 = t_cpu_now();
         rgb = tabulate(b);
-        t0 = cpu_now() - t0;
+        t0 = t_cpu_now() - t0;
         t = mt_measured_halfangle_create(rgb, &err);
         if (!t) die(file, &err);
         merl.bxdf = mt_regular_halfangle_brdf_create(a, MT_MODE_PBRT_V2, t, &err);
