@@ -33,7 +33,12 @@ static const cf_impl_config configs[] = {
       "Material \"matte\" \"texture Kd\" \"c\"", "at uv 0.1 0.3"},
      LE1, 0},
     {"matte ng tilted 37 deg", {"Material \"matte\" \"rgb Kd\" [.8 .8 .8]", TILT}, LE1 | GAP | TWO, 0},
-    {"matte with a bump map", {"Texture \"w\" \"float\" \"wrinkled\" \"float scale\" [0.3]",
+    /* a scaled solid texture: pbrt-v2's wrinkled reads only octaves and
+     * roughness (textures/wrinkled.cpp), its mapping is the transform the
+     * Texture statement is declared under (erratum mapping-3d: pbrt-v2
+     * applies it as world to texture, corrected mode its inverse) */
+    {"matte with a bump map", {"TransformBegin", "Scale .3 .3 .3",
+      "Texture \"w\" \"float\" \"wrinkled\" \"integer octaves\" [5] \"float roughness\" [.4]", "TransformEnd",
       "Material \"matte\" \"texture bumpmap\" \"w\" \"rgb Kd\" [.9 .9 .9]", "at p 0.3 0.7 0.1"}, LE1 | GAP, 0},
     /* plastic: Lambertian + Blinn microfacet, dielectric Fresnel */
     {"plastic default", {"Material \"plastic\""}, LE1 | Q, 10},

@@ -227,6 +227,22 @@ static void write_points(cf_strbuf *b)
     }
 }
 
+/* The warnings the sessions gave (a parameter a statement does not use, a
+ * redefinition): a configuration that passes a parameter its material or
+ * texture never reads checks nothing with it, and tells an implementation
+ * that warns about it something false. Counted over every session; the
+ * first one kept, named by its configuration. */
+static int catalog_warnings;
+static char first_warning[600];
+
+static void on_warning(void *ctx, const char *file, int line, const char *message)
+{
+    (void)file;
+    (void)line;
+    if (!catalog_warnings++)
+        snprintf(first_warning, sizeof first_warning, "%.200s: %.380s", (const char *)ctx, message);
+}
+
 /* Every row of one mode's files, through one session per configuration;
  * data is the directory of the files the statements name. 0, or -1 when a
  * session could not be made (out of memory, a configuration materia
@@ -245,6 +261,7 @@ static int write_mode(int mode, const char *data, cf_strbuf files[NFILES])
             fprintf(stderr, "test_vectors: %s\n", err.message);
             return -1;
         }
+        mt_query_set_warning(q, on_warning, (void *)conf[c].name);
         config_text(&conf[c], data, statements, sizeof statements, own_at, sizeof own_at);
         ntex = texture_names(statements, names, 8);
         snprintf(line, sizeof line, "mode %s", mode_names[mode]);
@@ -442,6 +459,11 @@ static int write_all(const char *dir)
         cf_strbuf files[NFILES];
         memset(files, 0, sizeof files);
         ok = !write_mode(m, data, files) && make_dir(pdir, mode_names[m]);
+        if (catalog_warnings) {
+            fprintf(stderr, "test_vectors: the catalog's statements gave %d warnings; the first: %s\n", catalog_warnings,
+                    first_warning);
+            ok = 0;
+        }
         for (f = 0; f < NFILES; ++f) {
             ok = ok && write_file(pdir, mode_names[m], file_names[f], &files[f]);
             cf_strbuf_free(&files[f]);
@@ -646,9 +668,12 @@ static void check_all(const char *dir)
     cf_strbuf_free(&b);
     for (m = 0; m < 2; ++m) {
         cf_strbuf files[NFILES];
-        char sub[64];
+        char sub[64], label[160];
         memset(files, 0, sizeof files);
+        catalog_warnings = 0;
         if (write_mode(m, data, files)) t_fail("vectors", "%s: the queries could not all be made", mode_names[m]);
+        snprintf(label, sizeof label, "catalog, %s mode: every parameter of every statement is used", mode_names[m]);
+        t_check(!catalog_warnings, label, "%d warnings; the first: %s", catalog_warnings, first_warning);
         snprintf(sub, sizeof sub, "%s/%s", PRECISION_NAME, mode_names[m]);
         for (f = 0; f < NFILES; ++f) {
             check_file(dir, sub, file_names[f], &files[f], file_inputs[f], ex, n);
