@@ -8,7 +8,9 @@
 # the longest first; each one's output is printed whole, in the order they
 # were listed, as soon as it and those before it have finished, so the log
 # reads the same whatever the number of jobs. CHECK_JOBS=1 runs them one
-# after the other.
+# after the other. CHECK_TIMES=FILE writes each program's wall and CPU
+# seconds (user + system, itself and its children) there, as TSV: what to
+# look at when the run grows.
 build=$1; precision=$2; shift 2
 dir=$(mktemp -d "${TMPDIR:-/tmp}/materia-check.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
@@ -41,7 +43,10 @@ done
 # the runner: each job's output goes to N.log, its exit status to N.rc
 i=0
 while [ "$i" -lt "$n" ]; do i=$((i + 1)); echo "$i"; done |
-    xargs -P "$jobs" -I{} sh -c 'sh "$1/$2.sh" > "$1/$2.log" 2>&1; echo $? > "$1/$2.rc.tmp"; mv "$1/$2.rc.tmp" "$1/$2.rc"' sh "$dir" {} &
+    xargs -P "$jobs" -I{} sh -c 't0=$(date +%s.%N)
+        sh "$1/$2.sh" > "$1/$2.log" 2>&1; rc=$?
+        { echo "$t0 $(date +%s.%N)"; times; } > "$1/$2.time"
+        echo $rc > "$1/$2.rc.tmp"; mv "$1/$2.rc.tmp" "$1/$2.rc"' sh "$dir" {} &
 runner=$!
 
 passed=0; failed=0; xfailed=0; skipped=0
@@ -67,6 +72,19 @@ while [ "$i" -lt "$n" ]; do
     fi
 done
 wait "$runner" 2>/dev/null
+if [ -n "${CHECK_TIMES:-}" ]; then
+    # N.time: start and end, then times's two lines (the job shell's own
+    # user and system time, then its children's, as 0m1.234s)
+    i=0
+    { printf 'program\twall_s\tcpu_s\n'
+      while [ "$i" -lt "$n" ]; do
+          i=$((i + 1))
+          [ -f "$dir/$i.time" ] || continue
+          awk -v name="$(cat "$dir/$i.name")" '
+              function s(x) { split(x, a, "m"); sub("s", "", a[2]); return a[1] * 60 + a[2] }
+              NR == 1 { wall = $2 - $1 } NR == 3 { printf "%s\t%.1f\t%.1f\n", name, wall, s($1) + s($2) }' "$dir/$i.time"
+      done; } > "$CHECK_TIMES"
+fi
 if [ -n "${SANITIZE:-}" ]; then
     echo "SKIP install: not tested in a sanitized build"
     skipped=$((skipped + 1))
