@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "materials/material_impl.h"
+#include "materials/uniform.h"
 #include "core/alloc.h"
 
 /* The registry: pbrt-v2's names, one creator each. */
@@ -184,6 +185,22 @@ int mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom, con
 }
 
 int mt__material_has_bssrdf(const mt_material *m) { return m->ops->bssrdf != NULL; }
+
+static int is_constant(const mt_texture *t) { return strcmp(mt_texture_class(t), "constant") == 0; }
+
+int mt__material_is_uniform(const mt_material *m)
+{
+    int i;
+    /* A constant bump map (shinymetal's default 0) moves the tangents by
+     * (d - d) / du = 0 whatever du the differentials give (mt_bump): the
+     * same frame without them. */
+    if (m->bump && !is_constant(m->bump)) return 0;
+    for (i = 0; i < m->ops->nslots; ++i)
+        if (!is_constant(m->tex[i])) return 0;
+    /* a get_bsdf of its own: only the mix's is known to read nothing else */
+    if (m->ops->get_bsdf) return mt__mix_is_uniform(m);
+    return 1;
+}
 
 int mt__material_get_bssrdf_cached(const mt_material *m, const mt_diffgeom *dg_shading,
                                    mt__bssrdf_cache *cache, mt_bssrdf *out)

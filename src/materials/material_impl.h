@@ -101,6 +101,10 @@ void mt__material_locate_param(const mt_texparams *tp, const char *name, mt_erro
 /* The operations table of a material type by pbrt-v2 name, or NULL. */
 const mt_material_ops *mt__material_ops(const char *type);
 
+/* Whether both materials of a mix are uniform (materials/uniform.h); 0 for
+ * any other material. */
+int mt__mix_is_uniform(const mt_material *m);
+
 /* The most BxDFs the material can add. */
 int mt__material_max_bxdfs(const mt_material *m);
 

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "materials/material_impl.h"
+#include "materials/uniform.h"
 
 enum { AMOUNT };
 static const mt_tex_slot slots[] = {
@@ -52,6 +53,12 @@ static mt_bsdf *mix_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom, c
     for (i = 0; i < n2; ++i)
         if (mt_bsdf_add(b1, mt_scaled_bxdf_create(arena, m->mode, mt_bsdf_component(b2, i), s2, err), err)) return NULL;
     return b1;
+}
+
+int mt__mix_is_uniform(const mt_material *m)
+{
+    const mix *x = (const mix *)m;
+    return m->ops == &mt__mix_ops && mt__material_is_uniform(x->m1) && mt__material_is_uniform(x->m2);
 }
 
 static void mix_destroy(mt_material *m)

@@ -226,7 +226,7 @@ static void trace_path(const deposit_job *job, long k, struct cand_buf *out)
         mt_real u1, u2;
         if (mt_geometry_intersect(s->geom, &ray, &hit)) {
             mt_surface sf;
-            mt_hit_surface(&hit, &ray, &sf);
+            mt_hit_surface_no_uv(&hit, &ray, &sf);
             nn = faceforward(sf.dg.n, mt_v3_neg(ray.d));
             if (depth >= 3 && has_bssrdf(mt_shape_user(hit.shape))) {
                 mt__ss_point c;

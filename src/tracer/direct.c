@@ -9,10 +9,11 @@
 int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
                      const mt_raydiff *rd, mt__vertex *v)
 {
-    mt_hit_surface(hit, ray, &v->sf);
+    v->info = mt_shape_user(hit->shape);
+    if (v->info->uniform) mt_hit_surface_no_uv(hit, ray, &v->sf);
+    else mt_hit_surface(hit, ray, &v->sf);
     if (rd) mt_surface_differentials(&v->sf, rd);
     mt_surface_shading(&v->sf, &v->dgs);
-    v->info = mt_shape_user(hit->shape);
     v->bsdf = mt_material_get_bsdf(v->info->material, &v->sf.dg, &v->dgs, tc->arena, &tc->err);
     if (!v->bsdf) {
         tc->shading_failures++;
@@ -65,13 +66,13 @@ static mt_rgb light_along(const mt_scene *s, const mt__light *light, const mt_ra
         before = *ray;
         before.tmax = hit.t * (1 - (mt_real)1e-4); /* the light itself is not in the way */
         if (mt_geometry_occluded(s->geom, &before)) return mt_rgb_black();
-        mt_hit_surface(&hit, &r, &sf);
+        mt_hit_surface_no_uv(&hit, &r, &sf);
         return mt__area_light_l(light, sf.dg.n, mt_v3_neg(ray->d));
     }
     if (mt_geometry_intersect(s->geom, ray, &hit)) {
         const mt__prim_info *info = mt_shape_user(hit.shape);
         if (info->light < 0 || &s->lights[info->light] != light) return mt_rgb_black();
-        mt_hit_surface(&hit, ray, &sf);
+        mt_hit_surface_no_uv(&hit, ray, &sf);
         return mt__area_light_l(light, sf.dg.n, mt_v3_neg(ray->d));
     }
     return mt_rgb_black();

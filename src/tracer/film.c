@@ -90,6 +90,7 @@ mt_status mt__film_buf_alloc(mt__film_buf *b, size_t pixels, mt_error *err)
         return mt_error_set(err, MT_ERR_NOMEM, "out of memory for a film buffer of %lu pixels",
                             (unsigned long)pixels);
     b->cap = pixels;
+    b->second_moments = 1;
     return MT_OK;
 }
 
@@ -100,14 +101,15 @@ void mt__film_buf_free(mt__film_buf *b)
     b->cap = 0;
 }
 
-static void accumulate(mt__pixel_acc *a, double w, const double l[3])
+static void accumulate(mt__pixel_acc *a, double w, const double l[3], int second_moments)
 {
     double w2 = w * w;
     int c;
     a->w += w;
+    for (c = 0; c < 3; ++c) a->wl[c] += w * l[c];
+    if (!second_moments) return;
     a->w2 += w2;
     for (c = 0; c < 3; ++c) {
-        a->wl[c] += w * l[c];
         a->w2l[c] += w2 * l[c];
         a->w2l2[c] += w2 * l[c] * l[c];
     }
@@ -125,7 +127,8 @@ void mt__film_add(const mt__film *f, mt__film_buf *b, mt_real ix, mt_real iy, mt
     if (x0 == x1 && y0 == y1 && flt->kind == MT__FILTER_BOX) {
         /* pbrt-v2's default: a box of half-width 0.5 reaches one pixel */
         if (x0 >= b->x0 && x0 < b->x0 + b->w && y0 >= b->y0 && y0 < b->y0 + b->h)
-            accumulate(&b->px[(size_t)(y0 - b->y0) * (size_t)b->w + (size_t)(x0 - b->x0)], 1.0, l);
+            accumulate(&b->px[(size_t)(y0 - b->y0) * (size_t)b->w + (size_t)(x0 - b->x0)], 1.0, l,
+                       b->second_moments);
         return;
     }
     if (x0 < b->x0) x0 = b->x0;
@@ -138,7 +141,7 @@ void mt__film_add(const mt__film *f, mt__film_buf *b, mt_real ix, mt_real iy, mt
             double w = flt->kind == MT__FILTER_BOX
                            ? 1.0
                            : (double)mt__filter_eval(flt, (mt_real)(x - dx), (mt_real)(y - dy));
-            accumulate(&row[x], w, l);
+            accumulate(&row[x], w, l, b->second_moments);
         }
     }
 }

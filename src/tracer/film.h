@@ -35,6 +35,9 @@ typedef struct mt__pixel_acc {
 /* The pixels [x0, x0 + w) x [y0, y0 + h) of the image. */
 typedef struct mt__film_buf {
     int x0, y0, w, h;
+    /* the sums of w^2 terms (W2, w^2 L, w^2 L^2) kept: only the variance
+     * reads them (1 after mt__film_buf_alloc) */
+    int second_moments;
     size_t cap; /* pixels allocated */
     mt__pixel_acc *px;
 } mt__film_buf;

@@ -199,6 +199,13 @@ typedef struct mt_surface {
 
 /* The surface at a hit of ray r (the ray the hit came from). */
 void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf);
+/* The same without the texture coordinates where they cost inverse
+ * trigonometric functions (a sphere's u = phi / phimax and v from theta:
+ * atan2 and acos): dg.u and dg.v are left 0, everything else is
+ * mt_hit_surface's, bit for bit (a sphere's partial derivatives and normal
+ * come from the point alone). For callers that read the geometry only, or
+ * whose material evaluates no texture there. */
+void mt_hit_surface_no_uv(const mt_hit *hit, const mt_ray *r, mt_surface *sf);
 
 /* pbrt-v2 DifferentialGeometry::ComputeDifferentials: dpdx, dpdy and the
  * (u, v) derivatives from the neighbouring rays' intersections with the

@@ -73,7 +73,7 @@ mt_rgb mt__escaped(const mt_scene *s, mt_vec3 d)
     return L;
 }
 
-static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *first)
+static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, mt_real diff_scale, const mt_hit *first)
 {
     const mt_scene *s = tc->scene;
     mt_rgb L = mt_rgb_black(), beta = mt_rgb_gray(1);
@@ -84,7 +84,15 @@ static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *fi
         mt__vertex v;
         mt_real comp[2], dir[2];
         mt_bsdf_sample bs;
-        if (!mt__vertex_shade(tc, &hit, &ray, bounces == 0 ? rd : NULL, &v)) break;
+        mt_raydiff scaled;
+        const mt_raydiff *vrd = NULL;
+        /* the camera ray's differentials, for the first vertex's textures */
+        if (bounces == 0 && !((const mt__prim_info *)mt_shape_user(hit.shape))->uniform) {
+            scaled = *rd;
+            mt_raydiff_scale(&scaled, diff_scale);
+            vrd = &scaled;
+        }
+        if (!mt__vertex_shade(tc, &hit, &ray, vrd, &v)) break;
         if (bounces == 0 || specular) L = mt_rgb_add(L, mt_rgb_mul(beta, mt__vertex_le(s, &v)));
         L = mt_rgb_add(L, mt_rgb_mul(beta, mt__sample_one_light(tc, &v, bounces, comp)));
         /* the next direction: pair 2's second value and pair 4 */
@@ -228,11 +236,14 @@ static mt_rgb direct_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *
     return L;
 }
 
-mt_rgb mt__li(mt__thread_ctx *tc, const mt_raydiff *rd)
+mt_rgb mt__li(mt__thread_ctx *tc, const mt_raydiff *rd, mt_real diff_scale)
 {
     mt_hit hit;
+    mt_raydiff scaled;
     if (!mt_geometry_intersect(tc->scene->geom, &rd->ray, &hit))
         return mt__escaped(tc->scene, rd->ray.d);
-    if (tc->scene->integrator == MT__INTEGRATOR_PATH) return path_li(tc, rd, &hit);
-    return direct_li(tc, rd, &hit, 0);
+    if (tc->scene->integrator == MT__INTEGRATOR_PATH) return path_li(tc, rd, diff_scale, &hit);
+    scaled = *rd;
+    mt_raydiff_scale(&scaled, diff_scale);
+    return direct_li(tc, &scaled, &hit, 0);
 }

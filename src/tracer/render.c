@@ -90,8 +90,7 @@ static void render_tile(render_job *job, mt__thread_ctx *tc, int t, mt__film_buf
                     cs.lens_v = u[1];
                 }
                 mt__camera_ray(&s->camera, &cs, &rd);
-                mt_raydiff_scale(&rd, diff_scale);
-                L = mt__li(tc, &rd);
+                L = mt__li(tc, &rd, diff_scale);
                 if (reject(L)) {
                     L = mt_rgb_black();
                     tc->rejected++;
@@ -262,6 +261,8 @@ mt_status mt_scene_render(const mt_scene *s, const mt_render_options *o, mt_imag
         job_free(&job, w, w ? nthreads : 0);
         return st;
     }
+    /* the sums of squared weights serve the variance only */
+    for (i = 0; i < job.npool; ++i) job.pool[i].second_moments = variance != NULL;
     t0 = now();
     memset(&dip, 0, sizeof dip);
     if (s->integrator == MT__INTEGRATOR_DIPOLE) {

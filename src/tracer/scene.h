@@ -22,6 +22,9 @@ typedef enum mt__integrator { MT__INTEGRATOR_PATH, MT__INTEGRATOR_DIRECT, MT__IN
 typedef struct mt__prim_info {
     const mt_material *material;
     int light; /* index of its area light in the scene's lights, -1 when none */
+    /* the material reads no (u, v) and no differentials
+     * (mt__material_is_uniform): its vertices are shaded without them */
+    int uniform;
 } mt__prim_info;
 
 struct mt_scene {
@@ -113,8 +116,11 @@ static inline void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k,
 }
 
 /* The radiance along a camera ray (pbrt-v2 SamplerRenderer::Li with the
- * scene's surface integrator). */
-mt_rgb mt__li(mt__thread_ctx *tc, const mt_raydiff *rd);
+ * scene's surface integrator). rd's differentials are scaled by diff_scale
+ * (mt_raydiff_scale) where they are used: pbrt-v2 scales them for every
+ * camera ray, but a first hit whose material is uniform (path integrator)
+ * never reads them. */
+mt_rgb mt__li(mt__thread_ctx *tc, const mt_raydiff *rd, mt_real diff_scale);
 
 /* Radiance of infinite lights along a ray that leaves the scene. */
 mt_rgb mt__escaped(const mt_scene *s, mt_vec3 d);

@@ -10,6 +10,7 @@
 #include <string.h>
 #include "core/alloc.h"
 #include "tracer/scene_load.h"
+#include "materials/uniform.h"
 
 /* ---- messages ------------------------------------------------------------ */
 
@@ -218,6 +219,7 @@ static mt_status do_shape(mt__loader *ld, const mt_statement *st, mt_error *err)
     }
     info->material = m;
     info->light = -1;
+    info->uniform = mt__material_is_uniform(m);
     s->prims[s->nprims++] = info;
     mt_shape_set_user(shape, info);
     if ((rc = mt_geometry_attach(s->geom, shape, err)) != MT_OK) return rc;

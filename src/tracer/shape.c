@@ -304,14 +304,14 @@ int mt_shape_occluded(const mt_shape *s, uint32_t prim, const mt_ray *r)
     return mt_shape_intersect(s, prim, r, &hit);
 }
 
-void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf)
+static void hit_surface(const mt_hit *hit, const mt_ray *r, int want_uv, mt_surface *sf)
 {
     const mt_shape *s = hit->shape;
     memset(sf, 0, sizeof *sf);
     sf->shape = s;
     sf->prim = hit->prim;
     switch (s->kind) {
-    case MT_SHAPE_SPHERE: mt__sphere_surface(s, hit->pobj, sf); break;
+    case MT_SHAPE_SPHERE: mt__sphere_surface(s, hit->pobj, want_uv, sf); break;
     case MT_SHAPE_DISK: mt__disk_surface(s, hit->pobj, sf); break;
     case MT_SHAPE_CYLINDER: mt__cylinder_surface(s, hit->pobj, sf); break;
     case MT_SHAPE_TRIANGLES: mt__triangle_surface(s, hit->prim, hit->b1, hit->b2, hit->t, r, sf); return;
@@ -319,6 +319,9 @@ void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf)
     /* pbrt-v2 quadrics: rayEpsilon = 5e-4 tHit */
     sf->ray_epsilon = (mt_real)5e-4 * hit->t;
 }
+
+void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf) { hit_surface(hit, r, 1, sf); }
+void mt_hit_surface_no_uv(const mt_hit *hit, const mt_ray *r, mt_surface *sf) { hit_surface(hit, r, 0, sf); }
 
 void mt_surface_shading(const mt_surface *sf, mt_diffgeom *shading)
 {

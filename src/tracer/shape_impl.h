@@ -52,7 +52,8 @@ typedef struct mt__oray {
 int mt__sphere_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3]);
 int mt__disk_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3]);
 int mt__cylinder_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3]);
-void mt__sphere_surface(const mt_shape *s, const double p[3], mt_surface *sf);
+/* want_uv = 0: (u, v) left 0 (mt_hit_surface_no_uv) */
+void mt__sphere_surface(const mt_shape *s, const double p[3], int want_uv, mt_surface *sf);
 void mt__disk_surface(const mt_shape *s, const double p[3], mt_surface *sf);
 void mt__cylinder_surface(const mt_shape *s, const double p[3], mt_surface *sf);
 mt_real mt__sphere_area(const mt_shape *s);

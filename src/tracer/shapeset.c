@@ -87,7 +87,7 @@ mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 w
      * point), a quadric's second point along the ray adds its own */
     r = mt_ray_make(p, wi, (mt_real)1e-3, MT_RAY_TMAX);
     while (mt_shape_intersect(s, prim, &r, &hit)) {
-        mt_hit_surface(&hit, &r, &sf);
+        mt_hit_surface_no_uv(&hit, &r, &sf);
         pdf += mt_v3_len2(mt_v3_sub(p, mt_ray_at(&r, hit.t))) /
                (mt_v3_absdot(sf.dg.n, mt_v3_neg(wi)) * density_area(s, prim, &hit));
         if (!more) break;
@@ -166,7 +166,7 @@ mt_vec3 mt_shape_set_sample_from(const mt_shape *s, mt_vec3 p, mt_real ucomp, mt
         }
     if (any) {
         mt_surface sf;
-        mt_hit_surface(&last, &r, &sf);
+        mt_hit_surface_no_uv(&last, &r, &sf);
         *ns = sf.dg.n;
     }
     return mt_ray_at(&r, thit);

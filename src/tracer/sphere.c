@@ -123,10 +123,11 @@ int mt__sphere_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
     return 1;
 }
 
-void mt__sphere_surface(const mt_shape *s, const double ray_p[3], mt_surface *sf)
+void mt__sphere_surface(const mt_shape *s, const double ray_p[3], int want_uv, mt_surface *sf)
 {
     double rad = s->radius, pm = s->phi_max, dth = (double)s->theta_max - s->theta_min;
-    double ph[3], p[3], perr[3], zr, cosphi, sinphi, theta, phi;
+    double ph[3], p[3], perr[3], zr, cosphi, sinphi;
+    mt_real u = 0, v = 0;
     double dpdu[3], dpdv[3], dndu[3], dndv[3];
     int i;
     for (i = 0; i < 3; ++i) ph[i] = ray_p[i];
@@ -139,8 +140,11 @@ void mt__sphere_surface(const mt_shape *s, const double ray_p[3], mt_surface *sf
         perr[i] = mt__gamma_d(5) * fabs(ph[i]);
     }
     if (p[0] == 0 && p[1] == 0) p[0] = 1e-5 * rad;
-    phi = mt__phi(p[0], p[1]);
-    theta = acos(fmax(-1.0, fmin(1.0, p[2] / rad)));
+    if (want_uv) {
+        double phi = mt__phi(p[0], p[1]), theta = acos(fmax(-1.0, fmin(1.0, p[2] / rad)));
+        u = (mt_real)(phi / pm);
+        v = (mt_real)((theta - s->theta_min) / dth);
+    }
     zr = sqrt(p[0] * p[0] + p[1] * p[1]);
     cosphi = p[0] / zr;
     sinphi = p[1] / zr;
@@ -157,8 +161,7 @@ void mt__sphere_surface(const mt_shape *s, const double ray_p[3], mt_surface *sf
         dndu[i] = dpdu[i] / rad;
         dndv[i] = dpdv[i] / rad;
     }
-    mt__surface_from_object(s, ph, perr, dpdu, dpdv, dndu, dndv, ph, (mt_real)(phi / pm),
-                            (mt_real)((theta - s->theta_min) / dth), sf);
+    mt__surface_from_object(s, ph, perr, dpdu, dpdv, dndu, dndv, ph, u, v, sf);
 }
 
 mt_real mt__sphere_area(const mt_shape *s) { return s->phi_max * s->radius * (s->zmax - s->zmin); }
@@ -230,7 +233,7 @@ static mt_vec3 area_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_rea
     mt_hit hit;
     mt_surface sf;
     if (!mt_shape_intersect(s, 0, &r, &hit)) return ps;
-    mt_hit_surface(&hit, &r, &sf);
+    mt_hit_surface_no_uv(&hit, &r, &sf);
     *ns = sf.dg.n;
     return mt_ray_at(&r, hit.t);
 }
