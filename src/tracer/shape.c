@@ -37,6 +37,16 @@ static double similarity_scale(const mt_transform *t)
     return sqrt(k2);
 }
 
+/* Whether m is a translation: identity linear part, last row (0, 0, 0, 1). */
+static int is_translation(const mt_matrix4 *m)
+{
+    int i, j;
+    for (i = 0; i < 4; ++i)
+        for (j = 0; j < 3; ++j)
+            if (m->m[i][j] != (i == j ? 1 : 0)) return 0;
+    return m->m[3][3] == 1;
+}
+
 static mt_shape *shape_new(const mt_transform *o2w, int ro, const mt_shape_options *opt)
 {
     mt_shape *s = mt__calloc(1, sizeof *s);
@@ -48,6 +58,7 @@ static mt_shape *shape_new(const mt_transform *o2w, int ro, const mt_shape_optio
     s->swaps_handedness = mt_transform_swaps_handedness(o2w);
     s->flip = s->reverse_orientation ^ s->swaps_handedness;
     s->sim_scale = similarity_scale(o2w);
+    s->w2o_translation = is_translation(&s->w2o.m);
     return s;
 }
 
@@ -130,6 +141,7 @@ void mt_shape_destroy(mt_shape *s)
     mt__free(s->N);
     mt__free(s->S);
     mt__free(s->uv);
+    mt__free(s->tri_frames);
     mt__free(s->areas);
     mt__free(s->cdf);
     mt__free(s);
@@ -229,6 +241,25 @@ void mt__ray_to_object(const mt_shape *s, const mt_ray *r, mt__oray *out)
     o[0] = r->o.x;
     o[1] = r->o.y;
     o[2] = r->o.z;
+    out->tmin = r->tmin;
+    out->tmax = r->tmax;
+    if (s->w2o_translation) {
+        /* The sums below with a translation's ones and zeros: o_i + z1 + z2
+         * + t_i and d_i + z1 + z2, z1 and z2 the signed zeros the other
+         * (finite) components make. Adding a signed zero to a non-zero value
+         * leaves it, so when every component is finite and not zero (q
+         * checks both at once) they are exactly o_i + t_i and d_i; a zero
+         * component takes the general sums, whose sign they decide. */
+        const double d[3] = {r->d.x, r->d.y, r->d.z};
+        double q = o[0] * o[1] * o[2] * d[0] * d[1] * d[2];
+        if (q != 0 && q - q == 0) {
+            for (i = 0; i < 3; ++i) {
+                out->o[i] = o[i] + m[i][3];
+                out->d[i] = d[i];
+            }
+            return;
+        }
+    }
     for (i = 0; i < 3; ++i) {
         out->o[i] = m[i][0] * o[0] + m[i][1] * o[1] + m[i][2] * o[2] + m[i][3];
         out->d[i] = m[i][0] * r->d.x + m[i][1] * r->d.y + m[i][2] * r->d.z;
@@ -236,8 +267,6 @@ void mt__ray_to_object(const mt_shape *s, const mt_ray *r, mt__oray *out)
     w = m[3][0] * o[0] + m[3][1] * o[1] + m[3][2] * o[2] + m[3][3];
     if (w != 1)
         for (i = 0; i < 3; ++i) out->o[i] /= w;
-    out->tmin = r->tmin;
-    out->tmax = r->tmax;
 }
 
 static int quadric_hit(const mt_shape *s, const mt_ray *r, mt_real tmax, double *t, double p[3])

@@ -17,6 +17,8 @@ struct mt_shape {
     /* o2w's linear part is sim_scale times an orthogonal matrix (a
      * similarity: spheres stay spheres); 0 when it is not */
     double sim_scale;
+    /* w2o is a translation (identity linear part, last row 0 0 0 1) */
+    int w2o_translation;
     void *user;
 
     /* quadrics, as pbrt-v2 stores them (its float arithmetic in mt_real) */
@@ -31,6 +33,9 @@ struct mt_shape {
     int *indices;
     mt_vec3 *P, *N, *S;
     mt_real *uv;
+    /* per triangle: dpdu, dpdv and the hit normal, computed once when the
+     * mesh has at most MT__TRI_FRAMES_MAX triangles (NULL otherwise) */
+    mt_vec3 *tri_frames;
 
     /* pbrt-v2 ShapeSet's Distribution1D over the primitives' areas */
     mt_real *areas; /* nprims */
@@ -93,6 +98,12 @@ mt_vec3 mt__triangle_sample(const mt_shape *s, uint32_t prim, mt_real u1, mt_rea
                             mt_vec3 *ns);
 /* pbrt-v2 Triangle::GetUVs: the vertices' uvs, or (0,0), (1,0), (1,1). */
 void mt__triangle_uvs(const mt_shape *s, uint32_t prim, mt_real uv[3][2]);
+/* A hit's dpdu, dpdv and normal depend on its triangle alone: for small
+ * meshes, whose 36 bytes a triangle then stay in the caches, they are
+ * computed once (s->tri_frames); a large mesh's are computed at each hit
+ * rather than fetched from one more array. */
+#define MT__TRI_FRAMES_MAX 4096u
+mt_status mt__triangle_frames_init(mt_shape *s, mt_error *err);
 
 /* Loop subdivision (loopsubdiv.c): refines the control mesh and creates the
  * limit mesh in s as pbrt-v2's LoopSubdiv::Refine does. */

@@ -76,7 +76,7 @@ mt_status mt__mesh_init(mt_shape *s, int ntris, const int *indices, int nverts, 
     if (N) memcpy(s->N, N, (size_t)nverts * sizeof *s->N);
     if (S) memcpy(s->S, S, (size_t)nverts * sizeof *s->S);
     if (uv) memcpy(s->uv, uv, 2 * (size_t)nverts * sizeof *s->uv);
-    return MT_OK;
+    return mt__triangle_frames_init(s, err);
 }
 
 /* ---- creation from a parameter list (pbrt-v2 CreateTriangleMeshShape) ---------- */
@@ -257,14 +257,14 @@ static int unit_d(mt_vec3 v, double out[3])
     return 1;
 }
 
-void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real b2, mt_real t,
-                          const mt_ray *r, mt_surface *sf)
+/* What a hit's DifferentialGeometry takes from its triangle alone: dpdu,
+ * dpdv and the normal n (flipped as the shape says). */
+static void triangle_frame(const mt_shape *s, uint32_t prim, mt_vec3 frame[3])
 {
     const int *v = s->indices + 3 * (size_t)prim;
     mt_vec3 p0 = s->P[v[0]], p1 = s->P[v[1]], p2 = s->P[v[2]];
     mt_vec3 dp1 = mt_v3_sub(p0, p2), dp2 = mt_v3_sub(p1, p2), e1, e2;
-    mt_real uv[3][2], du1, du2, dv1, dv2, det, b0 = 1 - b1 - b2;
-    mt_diffgeom *dg = &sf->dg;
+    mt_real uv[3][2], du1, du2, dv1, dv2, det;
     double n[3];
     int i;
 
@@ -283,13 +283,53 @@ void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real 
         double w[3];
         int facing = (s->mode & MT_FIX_TRIANGLE_FACING) != 0;
         if (!unit_d(facing ? mt_v3_cross(e1, e2) : mt_v3_cross(e2, e1), w)) w[0] = w[1] = 0, w[2] = 1;
-        mt_coordinate_system(mt_v3((mt_real)w[0], (mt_real)w[1], (mt_real)w[2]), &dg->dpdu,
-                             &dg->dpdv);
+        mt_coordinate_system(mt_v3((mt_real)w[0], (mt_real)w[1], (mt_real)w[2]), &frame[0],
+                             &frame[1]);
     } else {
         mt_real inv = 1 / det;
-        dg->dpdu = mt_v3_scale(mt_v3_sub(mt_v3_scale(dp1, dv2), mt_v3_scale(dp2, dv1)), inv);
-        dg->dpdv = mt_v3_scale(mt_v3_add(mt_v3_scale(dp1, -du2), mt_v3_scale(dp2, du1)), inv);
+        frame[0] = mt_v3_scale(mt_v3_sub(mt_v3_scale(dp1, dv2), mt_v3_scale(dp2, dv1)), inv);
+        frame[1] = mt_v3_scale(mt_v3_add(mt_v3_scale(dp1, -du2), mt_v3_scale(dp2, du1)), inv);
     }
+    /* pbrt-v2: nn = Normalize(Cross(dpdu, dpdv)), flipped; where that
+     * underflows or overflows, the winding normal with the uv map's sign.
+     * Corrected: the winding's normal whatever the uvs (pbrt-v3). */
+    if (s->mode & MT_FIX_TRIANGLE_FACING) {
+        if (!unit_d(mt_v3_cross(e1, e2), n)) n[0] = n[1] = 0, n[2] = 1;
+    } else if (!unit_d(mt_v3_cross(frame[0], frame[1]), n)) {
+        if (!unit_d(mt_v3_cross(e1, e2), n)) n[0] = n[1] = 0, n[2] = 1;
+        if (det < 0)
+            for (i = 0; i < 3; ++i) n[i] = -n[i];
+    }
+    if (s->flip)
+        for (i = 0; i < 3; ++i) n[i] = -n[i];
+    frame[2] = mt_v3((mt_real)n[0], (mt_real)n[1], (mt_real)n[2]);
+}
+
+mt_status mt__triangle_frames_init(mt_shape *s, mt_error *err)
+{
+    uint32_t i;
+    if (s->ntris > MT__TRI_FRAMES_MAX) return MT_OK;
+    s->tri_frames = mt__malloc(3 * (size_t)s->ntris * sizeof *s->tri_frames);
+    if (!s->tri_frames)
+        return mt_error_set(err, MT_ERR_NOMEM, "out of memory for a %u-triangle mesh", (unsigned)s->ntris);
+    for (i = 0; i < s->ntris; ++i) triangle_frame(s, i, s->tri_frames + 3 * (size_t)i);
+    return MT_OK;
+}
+
+void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real b2, mt_real t,
+                          const mt_ray *r, mt_surface *sf)
+{
+    const int *v = s->indices + 3 * (size_t)prim;
+    mt_vec3 p0 = s->P[v[0]], p1 = s->P[v[1]], p2 = s->P[v[2]], computed[3];
+    const mt_vec3 *frame = s->tri_frames ? s->tri_frames + 3 * (size_t)prim : computed;
+    mt_real uv[3][2], b0 = 1 - b1 - b2;
+    mt_diffgeom *dg = &sf->dg;
+
+    if (!s->tri_frames) triangle_frame(s, prim, computed);
+    mt__triangle_uvs(s, prim, uv);
+    dg->dpdu = frame[0];
+    dg->dpdv = frame[1];
+    dg->n = frame[2];
     dg->p = mt_v3(b0 * p0.x + b1 * p1.x + b2 * p2.x, b0 * p0.y + b1 * p1.y + b2 * p2.y,
                   b0 * p0.z + b1 * p1.z + b2 * p2.z);
     /* pbrt-v3 (3.9.4): gamma(7) (|b0 p0| + |b1 p1| + |b2 p2|) */
@@ -310,19 +350,6 @@ void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real 
     dg->v = b0 * uv[0][1] + b1 * uv[1][1] + b2 * uv[2][1];
     dg->dndu = dg->dndv = mt_v3(0, 0, 0);
     dg->flip = s->flip;
-    /* pbrt-v2: nn = Normalize(Cross(dpdu, dpdv)), flipped; where that
-     * underflows or overflows, the winding normal with the uv map's sign.
-     * Corrected: the winding's normal whatever the uvs (pbrt-v3). */
-    if (s->mode & MT_FIX_TRIANGLE_FACING) {
-        if (!unit_d(mt_v3_cross(e1, e2), n)) n[0] = n[1] = 0, n[2] = 1;
-    } else if (!unit_d(mt_v3_cross(dg->dpdu, dg->dpdv), n)) {
-        if (!unit_d(mt_v3_cross(e1, e2), n)) n[0] = n[1] = 0, n[2] = 1;
-        if (det < 0)
-            for (i = 0; i < 3; ++i) n[i] = -n[i];
-    }
-    if (s->flip)
-        for (i = 0; i < 3; ++i) n[i] = -n[i];
-    dg->n = mt_v3((mt_real)n[0], (mt_real)n[1], (mt_real)n[2]);
     sf->ray_epsilon = (mt_real)1e-3 * t;
 }
 
