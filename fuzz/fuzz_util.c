@@ -44,6 +44,7 @@ const char *fz_write_input(const uint8_t *data, size_t size, const char *ext)
     for (i = 0; i < nwritten; ++i) known |= strcmp(written[i], ext) == 0;
     if (!known && nwritten < (int)(sizeof written / sizeof written[0]))
         strcpy(written[nwritten++], ext);
+    unlink(path);
     f = fopen(path, "wb");
     if (!f) return NULL;
     if (size && fwrite(data, 1, size, f) != size) {
