@@ -109,6 +109,16 @@ static const mt_erratum errata[] = {
      "(a 3D checkerboard on the floor z = 0) takes one side or the other at random",
      "the barycentric point b0 p0 + b1 p1 + b2 p2 (pbrt-v3), on the plane to within its "
      "rounding"},
+    {"thin-lens-differentials", MT_FIX_THIN_LENS_DIFFERENTIALS, "camera",
+     "perspective.cpp PerspectiveCamera::GenerateRayDifferential, orthographic.cpp "
+     "OrthoCamera::GenerateRayDifferential",
+     "with lensradius > 0 the differentials are the lensless camera's: the perspective "
+     "camera's neighbour rays leave the lens point in the pinhole's directions of the next "
+     "pixels (they miss the main ray by the lens offset times t / focaldistance), the "
+     "orthographic camera's are the main ray shifted by a pixel at every distance; texture "
+     "filtering then sees the footprint of the lens offset, not of a pixel",
+     "the rays of the next pixels through the same lens point and their points on the plane "
+     "of focus (pbrt-v3), the derivative of the camera ray in raster x and y"},
     {"dipole-area", MT_FIX_DIPOLE_AREA, "integrator", "surfacepoints.cpp SurfacePointTask::Run",
      "every irradiance point is given the area pi (d/2)^2 of the disk of diameter "
      "minsampledistance, but a Poisson-disk set of minimum distance d covers only about half "

@@ -22,7 +22,7 @@ void mt__camera_default_screen(mt_real frame, mt_real screen[4])
 
 void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_real screen[4],
                      mt_real lens_radius, mt_real focal_distance, int xres, int yres,
-                     const mt_transform *camera_to_world)
+                     const mt_transform *camera_to_world, mt_mode mode)
 {
     /* ScreenToRaster = Scale(xres, yres, 1) * Scale(1 / (x1 - x0), 1 / (y0 - y1), 1)
      *                  * Translate(-x0, -y1, 0): screen y up, raster y down */
@@ -37,6 +37,7 @@ void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_
     mt_vec3 o;
     int i, j;
     c->orthographic = orthographic;
+    c->mode = mode;
     c->raster_to_camera = mt_transform_compose(&s2c, &r2s);
     c->camera_to_world = *camera_to_world;
     c->lens_radius = lens_radius;
@@ -69,19 +70,22 @@ static inline mt_vec3 to_world_point(const mt__camera *c, mt_vec3 p)
     return mt_v3(v.x + c->c2w[0][3], v.y + c->c2w[1][3], v.z + c->c2w[2][3]);
 }
 
-/* The thin lens of both cameras: the ray through the lens point that meets
- * the main ray on the plane of focus z = focalDistance. */
-static void thin_lens(const mt__camera *c, const mt__camera_sample *s, mt_vec3 *o, mt_vec3 *d)
+/* The point on the lens of radius c->lens_radius for the sample. */
+static mt_vec3 lens_point(const mt__camera *c, const mt__camera_sample *s)
 {
-    mt_real lu, lv, ft;
-    mt_vec3 focus;
+    mt_real lu, lv;
     mt_concentric_sample_disk(s->lens_u, s->lens_v, &lu, &lv);
-    lu *= c->lens_radius;
-    lv *= c->lens_radius;
-    ft = c->focal_distance / d->z;
-    focus = mt_v3_add(*o, mt_v3_scale(*d, ft));
-    *o = mt_v3(lu, lv, 0);
-    *d = mt_v3_normalize(mt_v3_sub(focus, *o));
+    return mt_v3(lu * c->lens_radius, lv * c->lens_radius, 0);
+}
+
+/* The thin lens of both cameras: the direction from the lens point to where
+ * the ray (o, d) of the lensless camera meets the plane of focus
+ * z = focalDistance (pbrt-v2 GenerateRay). */
+static mt_vec3 through_focus(const mt__camera *c, mt_vec3 lens, mt_vec3 o, mt_vec3 d)
+{
+    mt_real ft = c->focal_distance / d.z;
+    mt_vec3 focus = mt_v3_add(o, mt_v3_scale(d, ft));
+    return mt_v3_normalize(mt_v3_sub(focus, lens));
 }
 
 void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff *rd)
@@ -89,32 +93,54 @@ void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff 
     mt_vec3 pc = mt_v3_add(c->p00, mt_v3_add(mt_v3_scale(c->dx_camera, s->image_x),
                                              mt_v3_scale(c->dy_camera, s->image_y)));
     mt_vec3 o, d, rxo, ryo, rxd, ryd;
+    /* erratum thin-lens-differentials: pbrt-v2 gives a lens camera the
+     * differentials of the lensless one (below); corrected, the neighbours
+     * are the rays of the pixels x + 1 and y + 1 through the same lens
+     * point, as pbrt-v3 computes them (cameras/perspective.cpp,
+     * orthographic.cpp GenerateRayDifferential) */
+    int lens_diff = c->lens_radius > 0 && (c->mode & MT_FIX_THIN_LENS_DIFFERENTIALS);
     if (c->orthographic) {
+        const mt_vec3 z = mt_v3(0, 0, 1);
         o = pc;
-        d = mt_v3(0, 0, 1);
-        if (c->lens_radius > 0) thin_lens(c, s, &o, &d);
-        rxo = mt_v3_add(o, c->dx_camera);
-        ryo = mt_v3_add(o, c->dy_camera);
-        rxd = ryd = d;
-    } else {
-        d = mt_v3_normalize(pc);
-        rxd = mt_v3_normalize(mt_v3_add(pc, c->dx_camera));
-        ryd = mt_v3_normalize(mt_v3_add(pc, c->dy_camera));
+        d = z;
         if (c->lens_radius > 0) {
-            o = mt_v3(0, 0, 0);
-            thin_lens(c, s, &o, &d);
+            o = lens_point(c, s);
+            d = through_focus(c, o, pc, z);
+        }
+        if (lens_diff) {
+            rxo = ryo = o;
+            rxd = through_focus(c, o, mt_v3_add(pc, c->dx_camera), z);
+            ryd = through_focus(c, o, mt_v3_add(pc, c->dy_camera), z);
         } else {
+            /* pbrt-v2: the main ray shifted by a pixel, at any distance */
+            rxo = mt_v3_add(o, c->dx_camera);
+            ryo = mt_v3_add(o, c->dy_camera);
+            rxd = ryd = d;
+        }
+    } else {
+        mt_vec3 pin = mt_v3_normalize(pc), pinx = mt_v3_normalize(mt_v3_add(pc, c->dx_camera)),
+                piny = mt_v3_normalize(mt_v3_add(pc, c->dy_camera));
+        if (c->lens_radius <= 0) {
             /* the pinhole: every ray leaves the camera's world position */
             mt_vec3 ow = mt_v3(c->c2w[0][3], c->c2w[1][3], c->c2w[2][3]);
-            rd->ray = mt_ray_make(ow, to_world_vector(c, d), 0, MT_RAY_TMAX);
+            rd->ray = mt_ray_make(ow, to_world_vector(c, pin), 0, MT_RAY_TMAX);
             rd->has_differentials = 1;
             rd->rx_o = rd->ry_o = ow;
-            rd->rx_d = to_world_vector(c, rxd);
-            rd->ry_d = to_world_vector(c, ryd);
+            rd->rx_d = to_world_vector(c, pinx);
+            rd->ry_d = to_world_vector(c, piny);
             return;
         }
-        /* pbrt-v2: the neighbours keep the pinhole directions and the lens origin */
+        o = lens_point(c, s);
+        d = through_focus(c, o, mt_v3(0, 0, 0), pin);
         rxo = ryo = o;
+        if (lens_diff) {
+            rxd = through_focus(c, o, mt_v3(0, 0, 0), pinx);
+            ryd = through_focus(c, o, mt_v3(0, 0, 0), piny);
+        } else {
+            /* pbrt-v2: the lens origin with the pinhole's neighbour directions */
+            rxd = pinx;
+            ryd = piny;
+        }
     }
     rd->ray = mt_ray_make(to_world_point(c, o), to_world_vector(c, d), 0, MT_RAY_TMAX);
     rd->has_differentials = 1;

@@ -103,7 +103,7 @@ static mt_status build_camera(mt__loader *ld, mt_error *err)
                                                  "Camera: the screen window is empty"), err);
     check_scale(ld, o);
     mt__camera_init(&s->camera, ortho, fov, screen, lensr, focal, s->film.xres, s->film.yres,
-                    &ld->camera_to_world);
+                    &ld->camera_to_world, s->mode);
     return MT_OK;
 }
 
