@@ -6,7 +6,10 @@
  * extension), a bad material parameter failing with nothing written,
  * --quiet dropping the Sampler notice, no progress line (no carriage return)
  * when standard error is a file; materia-query's warnings for parameters a
- * statement did not use; materia-conformance's --only that selects nothing.
+ * statement did not use; materia-conformance's --only that selects nothing;
+ * an option given last without its value named as such (not as unknown), a
+ * --dir that is not a directory, output paths checked before the work and
+ * nothing half-written (materia-sheet, materia-golden).
  */
 #include <string.h>
 #include <unistd.h>
@@ -16,7 +19,7 @@
 
 static const char *const tools[] = {"materia-render", "materia-query", "materia-imgdiff",
                                     "materia-sheet",  "materia-merl",  "materia-conformance",
-                                    "materia-lobe"};
+                                    "materia-lobe",   "materia-golden"};
 
 static void every_tool(void)
 {
@@ -106,12 +109,77 @@ static void conformance(void)
                  "--threads");
 }
 
+/* An option that takes a value, given last: "OPTION needs a value", status 2. */
+static void no_value(void)
+{
+    static const char *const cases[][2] = {
+        {"materia-render", "good.pbrt -o"},        {"materia-render", "good.pbrt --spp"},
+        {"materia-query", "--dir"},                {"materia-imgdiff", "a.exr b.exr --block"},
+        {"materia-imgdiff", "a.exr b.exr --heatmap"}, {"materia-sheet", "good.exr -o"},
+        {"materia-sheet", "-o s.png good.exr --columns"}, {"materia-merl", "--out"},
+        {"materia-merl", "--out m.binary --dir"},  {"materia-lobe", "--wo 30 0 -o l.png --samples"},
+        {"materia-golden", "good.pbrt -o"},
+        {"materia-golden", "good.pbrt --points"}};
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        const char *opt = strrchr(cases[i][1], ' ') ? strrchr(cases[i][1], ' ') + 1 : cases[i][1];
+        char name[200], want[64];
+        snprintf(name, sizeof name, "%s %s: \"%s needs a value\", status 2", cases[i][0], cases[i][1], opt);
+        snprintf(want, sizeof want, "%s needs a value", opt);
+        t_tool_check(name, cases[i][0], cases[i][1], 2, "err.txt", want);
+    }
+    t_tool_check("lobe: --wo with one value is status 2, saying it needs two", "materia-lobe", "-o l.png --wo 30", 2,
+                 "err.txt", "--wo needs two values");
+    t_tool_check("imgdiff: an unknown option given last is unknown, status 2", "materia-imgdiff",
+                 "a.exr b.exr --bogus", 2, "err.txt", "unknown option --bogus");
+    t_tool_check("sheet: an unknown option given last is unknown, status 2", "materia-sheet", "-o s.png --bogus", 2,
+                 "err.txt", "unknown option --bogus");
+}
+
 static void others(void)
 {
     t_tool_check("imgdiff: a missing image is status 1", "materia-imgdiff", "a.exr b.exr", 1, "err.txt", "a.exr");
     t_tool_check("sheet: a heat map in a missing directory fails before the work", "materia-sheet",
                  "-o nosuchdir/s.png good.exr", 1, "err.txt", "no directory");
     t_tool_check("merl: no --out is status 2", "materia-merl", "'Material \"matte\"'", 2, "err.txt", "--out");
+    static const struct {
+        const char *name, *tool, *args;
+        int status;
+        const char *text; /* on standard error */
+    } bad[] = {
+        {"sheet: the output path is checked before any image is read", "materia-sheet",
+         "-o nosuchdir/s.png missing.exr", 1, "nosuchdir/s.png: no directory"},
+        {"sheet: LABEL= without an image is status 2", "materia-sheet", "-o s.png label=", 2,
+         "\"label=\" names no image"},
+        {"query: a --dir that does not exist is status 1, named", "materia-query", "--dir nosuchdir", 1,
+         "--dir \"nosuchdir\": No such file or directory"},
+        {"query: a --dir that is a file is status 1", "materia-query", "--dir good.pbrt", 1,
+         "--dir \"good.pbrt\": not a directory"},
+        {"merl: a --dir that does not exist is status 1, named", "materia-merl",
+         "--out m.binary --dir nosuchdir 'Material \"matte\"'", 1, "--dir \"nosuchdir\""}};
+    size_t i;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; ++i)
+        t_tool_check(bad[i].name, bad[i].tool, bad[i].args, bad[i].status, "err.txt", bad[i].text);
+    t_check(!exists("m.binary"), "merl: nothing written for a bad --dir", "m.binary exists");
+    t_tool_check("golden: --renders 1 is status 2, saying why", "materia-golden",
+                 "good.pbrt --renders 1 --spp 1 -o m.exr --variance v.exr --stats s.txt", 2, "err.txt",
+                 "--renders K needs K >= 2");
+    t_tool_check("golden: a bad --variance path fails before the renders", "materia-golden",
+                 "good.pbrt --renders 2 --spp 1 -o m.exr --variance nosuchdir/v.exr --stats s.txt", 1, "err.txt",
+                 "nosuchdir/v.exr: no directory");
+    t_check(!t_file_holds("err.txt", "render 1 of") && !exists("m.exr") && !exists("s.txt") &&
+                !exists("s.txt.tmp"),
+            "golden: nothing rendered or written for a bad --variance path", "a render ran or a file was left");
+    t_tool_check("lobe: an output in a missing directory fails before the measurement", "materia-lobe",
+                 "--wo 30 0 -o nosuchdir/l.png --impl 'touch ran; cat' 'Material \"matte\"'", 1, "err.txt",
+                 "nosuchdir/l.png: no directory");
+    t_tool_check("lobe: a --raw prefix in a missing directory fails before the measurement", "materia-lobe",
+                 "--wo 30 0 -o l.png --raw nosuchdir/x --impl 'touch ran; cat' 'Material \"matte\"'", 1, "err.txt",
+                 "nosuchdir/x-A-fcos.pfm: no directory");
+    t_check(!exists("ran") && !exists("l.png"), "lobe: no implementation started, nothing written for a bad path",
+            "the implementation ran or l.png exists");
+    t_tool_check("golden: an unknown option is named, status 2", "materia-golden", "good.pbrt --bogus", 2, "err.txt",
+                 "unknown option --bogus");
 }
 
 int main(int argc, char **argv)
@@ -126,6 +194,7 @@ int main(int argc, char **argv)
     render();
     query();
     conformance();
+    no_value();
     others();
     t_tmpdir_remove();
     return t_status();

@@ -29,13 +29,26 @@
 
 static const char *prog = "materia-golden";
 
-static int usage(void)
+static int usage_to(FILE *f)
 {
-    fprintf(stderr, "usage: %s scene.pbrt --renders K --spp N -o mean.exr --variance var.exr --stats stats.txt\n"
-                    "       [--mode pbrt-v2|corrected] [--threads N]\n"
-                    "       %s scene.pbrt --points points.txt [--seed S]\n",
-            prog, prog);
-    return 2;
+    fprintf(f, "usage: %s scene.pbrt --renders K --spp N -o mean.exr --variance var.exr --stats stats.txt\n"
+               "       [--mode pbrt-v2|corrected] [--threads N]\n"
+               "       %s scene.pbrt --points points.txt [--seed S]\n"
+               "       %s --help | --version\n"
+               "K >= 2 renders with seeds 1..K: their mean, the variance of the mean, and each render's\n"
+               "block statistics; or the scene's dipole irradiance points. Exit status 0 written,\n"
+               "1 failure (nothing written), 2 wrong command line.\n",
+            prog, prog, prog);
+    return f == stdout ? 0 : 2;
+}
+
+static int usage(void) { return usage_to(stderr); }
+
+/* A wrong command line: why, then the usage. */
+static int bad_usage(const char *why, const char *arg)
+{
+    fprintf(stderr, "%s: %s%s\n", prog, why, arg ? arg : "");
+    return usage();
 }
 
 static int fail(const mt_error *err)
@@ -101,6 +114,7 @@ int main(int argc, char **argv)
     uint64_t seed = 1;
     mt_render_options o;
     mt_error err;
+    mt_status st;
     mt_scene *s;
     mt_imgacc *acc = NULL;
     mt_image mean, var;
@@ -110,7 +124,18 @@ int main(int argc, char **argv)
     FILE *f;
     mt_render_options_default(&o);
     for (i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage_to(stdout);
+        if (!strcmp(a, "--version")) {
+            printf("%s (materia) %s, %s\n", prog, mt_version(), mt_precision());
+            return 0;
+        }
+    }
+    for (i = 1; i < argc; ++i) {
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!val && (!strcmp(a, "-o") || !strcmp(a, "--variance") || !strcmp(a, "--stats") ||
+                     !strcmp(a, "--points") || !strcmp(a, "--mode")))
+            return tool_no_value(prog, a);
         if (!strcmp(a, "--renders") || !strcmp(a, "--spp") || !strcmp(a, "--threads")) {
             if (!tool_number(prog, a, val, 1, a[2] == 's' ? (1 << 24) : 4096, 1, &v)) return 2;
             if (a[2] == 'r') renders = (int)v;
@@ -118,13 +143,11 @@ int main(int argc, char **argv)
             else o.threads = (int)v;
             ++i;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--variance") || !strcmp(a, "--stats")) {
-            if (!val) return usage();
             if (a[1] == 'o') out = val;
             else if (a[2] == 'v') var_path = val;
             else stats_path = val;
             ++i;
         } else if (!strcmp(a, "--points")) {
-            if (!val) return usage();
             points = val;
             ++i;
         } else if (!strcmp(a, "--seed")) {
@@ -132,17 +155,27 @@ int main(int argc, char **argv)
             seed = (uint64_t)v;
             ++i;
         } else if (!strcmp(a, "--mode")) {
-            if (!val || mt_mode_parse(val, &o.mode) != 0) return usage();
+            if (mt_mode_parse(val, &o.mode) != 0) return bad_usage("--mode is pbrt-v2 or corrected, not ", val);
             ++i;
-        } else if (a[0] == '-' || scene) {
-            return usage();
+        } else if (a[0] == '-') {
+            return bad_usage("unknown option ", a);
+        } else if (scene) {
+            return bad_usage("more than one scene: ", a);
         } else {
             scene = a;
         }
     }
-    if (scene && points) return write_points(scene, points, seed, &o);
-    if (!scene || !out || !var_path || !stats_path || renders < 2 || spp < 1) return usage();
+    if (!scene) return bad_usage("no scene file", NULL);
+    if (points) return write_points(scene, points, seed, &o);
+    if (!out || !var_path || !stats_path)
+        return bad_usage(!out ? "no -o mean.exr" : !var_path ? "no --variance var.exr" : "no --stats stats.txt", NULL);
+    if (renders < 2 || spp < 1)
+        return bad_usage(renders < 2 ? "--renders K needs K >= 2 (the variance comes from their spread)"
+                                     : "no --spp N", NULL);
     o.spp = spp;
+    /* a typo in an output path fails now, not after the renders */
+    if (mt_image_check_writable(out, &err) != MT_OK || mt_image_check_writable(var_path, &err) != MT_OK)
+        return fail(&err);
     if (!(s = mt_scene_load(scene, &o, &err))) return fail(&err);
     mt_scene_image_size(s, &w, &h);
     if (!(acc = mt_imgacc_create(w, h, 3, &err))) {
@@ -183,21 +216,27 @@ int main(int argc, char **argv)
         mt_scene_destroy(s);
         return 1;
     }
-    if (mt_imgacc_finish(acc, &mean, &var, &err) != MT_OK || mt_render_write(out, &mean, s, &o, &err) != MT_OK ||
-        mt_render_write(var_path, &var, s, &o, &err) != MT_OK) {
+    /* nothing written on failure: each file written goes when a later one fails */
+    st = mt_imgacc_finish(acc, &mean, &var, &err);
+    if (st == MT_OK) {
+        if ((st = mt_render_write(out, &mean, s, &o, &err)) == MT_OK &&
+            (st = mt_render_write(var_path, &var, s, &o, &err)) != MT_OK)
+            remove(out);
+        mt_image_free(&mean);
+        mt_image_free(&var);
+    }
+    mt_imgacc_destroy(acc);
+    mt_scene_destroy(s);
+    if (st != MT_OK) {
         remove(tmp);
-        mt_imgacc_destroy(acc);
-        mt_scene_destroy(s);
         return fail(&err);
     }
     if (rename(tmp, stats_path) != 0) {
         fprintf(stderr, "%s: cannot rename %s to %s\n", prog, tmp, stats_path);
         remove(tmp);
+        remove(out);
+        remove(var_path);
         return 1;
     }
-    mt_image_free(&mean);
-    mt_image_free(&var);
-    mt_imgacc_destroy(acc);
-    mt_scene_destroy(s);
     return 0;
 }

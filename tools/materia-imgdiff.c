@@ -68,10 +68,11 @@ static int parse(int argc, char **argv, args *a)
             a->heatmap_z = 1;
         else if (!strcmp(o, "--fail-ztest"))
             a->fail_ztest = 1;
-        else if (o[0] == '-' && o[1] == '-' && !val) {
-            fprintf(stderr, "%s: %s needs a value (or is unknown)\n", prog, o);
-            return 2;
-        } else if (!strcmp(o, "--var-a"))
+        else if (!val && (!strcmp(o, "--var-a") || !strcmp(o, "--var-b") || !strcmp(o, "--heatmap") ||
+                          !strcmp(o, "--block") || !strcmp(o, "--alpha") || !strcmp(o, "--heatmap-max") ||
+                          !strcmp(o, "--fail-above")))
+            return tool_no_value(prog, o);
+        else if (!strcmp(o, "--var-a"))
             a->var_a = argv[++i];
         else if (!strcmp(o, "--var-b"))
             a->var_b = argv[++i];
@@ -86,7 +87,7 @@ static int parse(int argc, char **argv, args *a)
             if (!tool_number(prog, o, argv[++i], 1e-30, 1e30, 0, &a->heatmap_max)) return 2;
         } else if (!strcmp(o, "--fail-above")) {
             if (!tool_number(prog, o, argv[++i], 0, 1e30, 0, &a->fail_above)) return 2;
-        } else if (o[0] == '-' && o[1] == '-') {
+        } else if (o[0] == '-' && o[1]) {
             fprintf(stderr, "%s: unknown option %s\n", prog, o);
             return usage(stderr);
         } else if (npos == 0)

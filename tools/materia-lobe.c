@@ -372,6 +372,14 @@ int main(int argc, char **argv)
     char header[4][256];
     for (i = 1; i < argc && !first; ++i) {
         const char *a = argv[i];
+        if ((i + 1 == argc && (!strcmp(a, "--impl") || !strcmp(a, "--against") || !strcmp(a, "--mode") ||
+                               !strcmp(a, "--samples") || !strcmp(a, "--timeout") || !strcmp(a, "--raw") ||
+                               !strcmp(a, "-o"))) ||
+            (i + 2 >= argc && !strcmp(a, "--wo"))) {
+            if (strcmp(a, "--wo")) return tool_no_value(prog, a);
+            fprintf(stderr, "%s: --wo needs two values, THETA PHI\n", prog);
+            return 2;
+        }
         if (!strcmp(a, "--impl") && i + 1 < argc)
             impl_cmd = argv[++i];
         else if (!strcmp(a, "--against") && i + 1 < argc)
@@ -412,6 +420,15 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s: %s\n", prog, !out ? "-o FILE.png is needed" : theta < 0 ? "--wo THETA PHI is needed" : "no statements");
         usage(stderr);
         return 2;
+    }
+    {
+        /* a typo in an output path fails now, not after the measurement */
+        char raw_path[1100];
+        snprintf(raw_path, sizeof raw_path, "%s-A-fcos.pfm", raw ? raw : "");
+        if (mt_image_check_writable(out, &err) != MT_OK || (raw && mt_image_check_writable(raw_path, &err) != MT_OK)) {
+            fprintf(stderr, "%s: %s\n", prog, err.message);
+            return 1;
+        }
     }
     for (i = first; i < argc; ++i) len += strlen(argv[i]) + 1;
     statements = malloc(len);

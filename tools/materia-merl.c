@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "materia.h"
+#include "toolargs.h"
 #include "materia/measured.h"
 
 static void usage(FILE *f)
@@ -88,10 +89,18 @@ int main(int argc, char **argv)
             usage(stdout);
             free(text);
             return 0;
+        } else if (i + 1 == argc && (!strcmp(argv[i], "--out") || !strcmp(argv[i], "--dir") ||
+                                     !strcmp(argv[i], "--mode") || !strcmp(argv[i], "--at"))) {
+            free(text);
+            return tool_no_value("materia-merl", argv[i]);
         } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
             out = argv[++i];
         } else if (!strcmp(argv[i], "--dir") && i + 1 < argc) {
             opt.dir = argv[++i];
+            if (!tool_directory("materia-merl", "--dir", opt.dir)) {
+                free(text);
+                return 1;
+            }
         } else if (!strcmp(argv[i], "--mode") && i + 1 < argc) {
             if (mt_mode_parse(argv[++i], &opt.mode) != 0) {
                 fprintf(stderr, "materia-merl: unknown mode \"%s\" (pbrt-v2 or corrected)\n", argv[i]);
@@ -109,7 +118,7 @@ int main(int argc, char **argv)
         } else if (!strcmp(argv[i], "-") && !text) {
             ok = read_stdin(&text, &len);
         } else if (argv[i][0] == '-' && argv[i][1] == '-') {
-            fprintf(stderr, "materia-merl: unknown option or missing value: %s\n", argv[i]);
+            fprintf(stderr, "materia-merl: unknown option %s\n", argv[i]);
             usage(stderr);
             free(text);
             return 2;

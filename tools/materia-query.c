@@ -17,6 +17,7 @@
 #include <unistd.h>
 #include "materia.h"
 #include "materia/query.h"
+#include "toolargs.h"
 
 static void warn(void *ctx, const char *file, int line, const char *msg)
 {
@@ -90,8 +91,11 @@ int main(int argc, char **argv)
     reader in = {NULL, 0, 0, 0, 0};
     int i;
     for (i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--dir") && i + 1 < argc)
+        if (!strcmp(argv[i], "--dir")) {
+            if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
             dir = argv[++i];
+            if (!tool_directory("materia-query", "--dir", dir)) return 1;
+        }
         else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             printf("usage: materia-query [--dir DIR] < queries\n"
                    "       materia-query --help | --version\n"
@@ -103,13 +107,14 @@ int main(int argc, char **argv)
             printf("materia-query (materia) %s, %s\n", mt_version(), mt_precision());
             return 0;
         } else {
-            fprintf(stderr, "%s: unknown argument \"%s\" (usage: %s [--dir DIR] < queries)\n", argv[0], argv[i], argv[0]);
+            fprintf(stderr, "materia-query: unknown argument \"%s\" (usage: materia-query [--dir DIR] < queries)\n",
+                    argv[i]);
             return 2;
         }
     }
     mt_error_clear(&err);
     if (!(q = mt_query_create(dir, &err))) {
-        fprintf(stderr, "%s: %s\n", argv[0], err.message);
+        fprintf(stderr, "materia-query: %s\n", err.message);
         return 1;
     }
     mt_query_set_warning(q, warn, NULL);
@@ -119,7 +124,7 @@ int main(int argc, char **argv)
         char *line = next_line(&in, &oom);
         size_t len;
         if (oom) {
-            fprintf(stderr, "%s: out of memory\n", argv[0]);
+            fprintf(stderr, "materia-query: out of memory\n");
             return 1;
         }
         if (!line) break;

@@ -19,6 +19,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "materia.h"
+#include "toolargs.h"
 #include "materia/render.h"
 
 static const char *usage =
@@ -68,7 +69,8 @@ static int fail(const mt_error *err)
 
 static int bad_option(const char *what, const char *value)
 {
-    fprintf(stderr, "materia-render: %s: bad value \"%s\"\n%s", what, value ? value : "", usage);
+    if (!value) return tool_no_value("materia-render", what);
+    fprintf(stderr, "materia-render: %s: bad value \"%s\"\n%s", what, value, usage);
     return 2;
 }
 

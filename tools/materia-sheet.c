@@ -40,11 +40,18 @@ static int integer(const char *opt, const char *s, long lo, long hi, int *out)
     return 1;
 }
 
+/* The path of "label=path" or of a bare path. */
+static const char *split_path(const char *arg)
+{
+    const char *eq = strchr(arg, '=');
+    return eq ? eq + 1 : arg;
+}
+
 /* Splits "label=path" (or a bare path) into the entry's label (a new
  * string) and returns the path. */
 static const char *split(const char *arg, char **label)
 {
-    const char *eq = strchr(arg, '='), *path = eq ? eq + 1 : arg, *base, *dot;
+    const char *eq = strchr(arg, '='), *path = split_path(arg), *base, *dot;
     size_t n;
     if (eq) {
         base = arg;
@@ -84,20 +91,42 @@ int main(int argc, char **argv)
         return 1;
     }
     mt_error_clear(&err);
+    /* the options first, and the output path checked, before any image is read */
     for (i = 1; i < argc && status == 0; ++i) {
         const char *o = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(o, "-o") && val)
-            out = argv[++i];
-        else if (!strcmp(o, "--columns") && val)
-            status = integer(o, argv[++i], 0, 4096, &opt.columns) ? 0 : 2;
-        else if (!strcmp(o, "--font-scale") && val)
-            status = integer(o, argv[++i], 1, 16, &opt.font_scale) ? 0 : 2;
-        else if (!strcmp(o, "--exposure") && val)
-            status = tool_number(prog, o, argv[++i], -64, 64, 0, &opt.exposure) ? 0 : 2;
-        else if (o[0] == '-') {
-            fprintf(stderr, "%s: unknown option %s%s\n", prog, o, val ? "" : " (or no value)");
+        if (!strcmp(o, "-o") || !strcmp(o, "--columns") || !strcmp(o, "--font-scale") || !strcmp(o, "--exposure")) {
+            if (!val)
+                status = tool_no_value(prog, o);
+            else if (!strcmp(o, "-o"))
+                out = argv[++i];
+            else if (!strcmp(o, "--columns"))
+                status = integer(o, argv[++i], 0, 4096, &opt.columns) ? 0 : 2;
+            else if (!strcmp(o, "--font-scale"))
+                status = integer(o, argv[++i], 1, 16, &opt.font_scale) ? 0 : 2;
+            else
+                status = tool_number(prog, o, argv[++i], -64, 64, 0, &opt.exposure) ? 0 : 2;
+        } else if (o[0] == '-') {
+            fprintf(stderr, "%s: unknown option %s\n", prog, o);
             status = usage(stderr);
-        } else {
+        } else if (!*split_path(o)) {
+            fprintf(stderr, "%s: \"%s\" names no image (LABEL=IMAGE)\n", prog, o);
+            status = 2;
+        } else
+            n++;
+    }
+    if (status == 0 && (!out || n == 0)) {
+        fprintf(stderr, "%s: %s\n", prog, !out ? "no output file (-o SHEET.png)" : "no images");
+        status = usage(stderr);
+    }
+    if (status == 0 && mt_image_check_writable(out, &err) != MT_OK) {
+        fprintf(stderr, "%s: %s\n", prog, err.message);
+        status = 1;
+    }
+    for (i = 1, n = 0; i < argc && status == 0; ++i) {
+        const char *o = argv[i];
+        if (o[0] == '-')
+            ++i; /* an option and its value, read above */
+        else {
             const char *path = split(o, &labels[n]);
             if (!labels[n] || mt_image_read(path, &images[n], &err) != MT_OK) {
                 fprintf(stderr, "%s: %s\n", prog, labels[n] ? err.message : "out of memory");
@@ -108,14 +137,6 @@ int main(int argc, char **argv)
                 n++;
             }
         }
-    }
-    if (status == 0 && (!out || n == 0)) {
-        fprintf(stderr, "%s: %s\n", prog, !out ? "no output file (-o SHEET.png)" : "no images");
-        status = usage(stderr);
-    }
-    if (status == 0 && mt_image_check_writable(out, &err) != MT_OK) {
-        fprintf(stderr, "%s: %s\n", prog, err.message);
-        status = 1;
     }
     if (status == 0) {
         if (mt_sheet_make(entries, n, &opt, &sheet, &err) != MT_OK ||
