@@ -164,16 +164,17 @@ mt_mode mt_material_mode(const mt_material *m) { return m->mode; }
 mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom,
                               const mt_diffgeom *dg_shading, mt_arena *arena, mt_error *err)
 {
-    mt_diffgeom dgs;
+    mt_diffgeom bumped;
+    const mt_diffgeom *dgs = dg_shading;
     mt_bsdf *b;
     if (m->ops->get_bsdf) return m->ops->get_bsdf(m, dg_geom, dg_shading, arena, err);
-    if (m->bump)
-        mt_bump(m->bump, dg_geom, dg_shading, &dgs, 0);
-    else
-        dgs = *dg_shading;
-    b = mt_bsdf_create(arena, m->mode, &dgs, dg_geom->n, m->ops->eta ? m->ops->eta(m, &dgs) : 1, err);
+    if (m->bump) {
+        mt_bump(m->bump, dg_geom, dg_shading, &bumped, 0);
+        dgs = &bumped;
+    }
+    b = mt_bsdf_create(arena, m->mode, dgs, dg_geom->n, m->ops->eta ? m->ops->eta(m, dgs) : 1, err);
     if (!b) return NULL;
-    if (m->ops->add_bxdfs(m, b, &dgs, arena, err) != MT_OK) return NULL;
+    if (m->ops->add_bxdfs(m, b, dgs, arena, err) != MT_OK) return NULL;
     return b;
 }
 

@@ -13,13 +13,17 @@ int mt__vertex_shade(mt__thread_ctx *tc, const mt_hit *hit, const mt_ray *ray,
     if (v->info->uniform) mt_hit_surface_no_uv(hit, ray, &v->sf);
     else mt_hit_surface(hit, ray, &v->sf);
     if (rd) mt_surface_differentials(&v->sf, rd);
-    mt_surface_shading(&v->sf, &v->dgs);
-    v->bsdf = mt_material_get_bsdf(v->info->material, &v->sf.dg, &v->dgs, tc->arena, &tc->err);
+    v->sh = &v->sf.dg;
+    if (mt_surface_has_shading(&v->sf)) {
+        mt_surface_shading(&v->sf, &v->dgs);
+        v->sh = &v->dgs;
+    }
+    v->bsdf = mt_material_get_bsdf(v->info->material, &v->sf.dg, v->sh, tc->arena, &tc->err);
     if (!v->bsdf) {
         tc->shading_failures++;
         return 0;
     }
-    v->p = v->dgs.p;
+    v->p = v->sh->p;
     v->n = mt_bsdf_shading(v->bsdf)->n; /* after bump mapping, as pbrt-v2's dgShading.nn */
     v->wo = mt_v3_normalize(mt_v3_neg(ray->d));
     mt__bsdf_wo_init(v->bsdf, v->wo, &v->bwo);

@@ -219,6 +219,9 @@ void mt_surface_differentials(mt_surface *sf, const mt_raydiff *rd);
  * differentials are copied from sf->dg. The shading normal is not turned to
  * the geometric normal's side (pbrt-v2 does not). */
 void mt_surface_shading(const mt_surface *sf, mt_diffgeom *shading);
+/* 0 when mt_surface_shading would copy sf->dg unchanged (every shape but a
+ * triangle mesh with N or S): the caller may use sf->dg itself. */
+int mt_surface_has_shading(const mt_surface *sf);
 
 /* ---- leaving a surface -------------------------------------------------------
  * pbrt-v3's robust spawning (OffsetRayOrigin): the origin moves off the

@@ -189,7 +189,7 @@ static mt_rgb subsurface(mt__thread_ctx *tc, const mt__vertex *v)
     mt__diffusion rd;
     mt_fresnel fr;
     mt_real fdr;
-    if (!d || !d->root || !mt__material_get_bssrdf_cached(v->info->material, &v->dgs, &tc->bssrdf_cache, &b)) return mt_rgb_black();
+    if (!d || !d->root || !mt__material_get_bssrdf_cached(v->info->material, v->sh, &tc->bssrdf_cache, &b)) return mt_rgb_black();
     sigmap_t = mt_rgb_add(b.sigma_a, b.sigma_prime_s);
     if (mt_rgb_is_black(sigmap_t) || !(b.eta > 0)) return mt_rgb_black();
     if (tc->fdr_valid && tc->fdr_eta == b.eta) {

@@ -11,7 +11,8 @@
 
 typedef struct mt__vertex {
     mt_surface sf;             /* the intersection (geometric dg, error bounds) */
-    mt_diffgeom dgs;           /* the shape's shading geometry */
+    mt_diffgeom dgs;           /* storage for the shading geometry, when it is not sf.dg */
+    const mt_diffgeom *sh;     /* the shape's shading geometry: &sf.dg or &dgs */
     mt_bsdf *bsdf;
     const mt__prim_info *info;
     mt_vec3 p, n, wo;          /* pbrt-v2's bsdf->dgShading.p, .nn and -ray.d */

@@ -352,6 +352,11 @@ static void hit_surface(const mt_hit *hit, const mt_ray *r, int want_uv, mt_surf
 void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf) { hit_surface(hit, r, 1, sf); }
 void mt_hit_surface_no_uv(const mt_hit *hit, const mt_ray *r, mt_surface *sf) { hit_surface(hit, r, 0, sf); }
 
+int mt_surface_has_shading(const mt_surface *sf)
+{
+    return sf->shape->kind == MT_SHAPE_TRIANGLES && (sf->shape->N || sf->shape->S);
+}
+
 void mt_surface_shading(const mt_surface *sf, mt_diffgeom *shading)
 {
     if (sf->shape->kind == MT_SHAPE_TRIANGLES) mt__triangle_shading(sf, shading);
