@@ -109,7 +109,7 @@ mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt_
         mt_rgb Li;
         mt_ray ray;
         if (!(bs.type & MT_BSDF_SPECULAR)) {
-            mt_real lpdf = mt__light_pdf(light, v->p, bs.wi);
+            mt_real lpdf = ls.pdf_any_dir ? ls.pdf : mt__light_pdf(light, v->p, bs.wi);
             if (lpdf == 0) return Ld;
             w = mt_power_heuristic(1, bs.pdf, 1, lpdf);
         }

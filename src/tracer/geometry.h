@@ -284,6 +284,12 @@ mt_vec3 mt_shape_set_sample_from(const mt_shape *s, mt_vec3 p, mt_real ucomp, mt
                                  mt_real u2, mt_vec3 *ns);
 /* sum over primitives of area_i Pdf_i(p, wi) / total area. */
 mt_real mt_shape_set_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi);
+/* mt_shape_sample_from of primitive 0 into *pt and, when the shape's
+ * mt_shape_set_pdf_from(s, p, wi) has the same value for every direction wi
+ * (a lone sphere seen from outside: pbrt-v2's cone pdf, measured by the
+ * sample itself), that value in *pdf and 1 returned; 0 otherwise. */
+int mt_shape_sample_from_pdf(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns,
+                             mt_vec3 *pt, mt_real *pdf);
 
 /* ---- the scene's geometry and its BVH ------------------------------------------ */
 

@@ -178,6 +178,7 @@ void mt__light_sample_l(const mt__light *l, const mt_surface *sf, mt_vec3 p, mt_
     mt_real d2;
     out->Li = mt_rgb_black();
     out->pdf = 0;
+    out->pdf_any_dir = 0;
     out->wi = mt_v3(0, 0, 1);
     switch (l->kind) {
     case MT__LIGHT_POINT:
@@ -203,6 +204,8 @@ void mt__light_sample_l(const mt__light *l, const mt_surface *sf, mt_vec3 p, mt_
         return;
     case MT__LIGHT_AREA: {
         mt_vec3 ns, ps;
+        mt_real pdf = 0;
+        int any_dir = 0;
         mt_shape_kind k = mt_shape_kind_of(l->shape);
         /* pbrt-v2's ShapeSet re-intersects the ray from p towards the sample
          * with its shapes and keeps that point and its normal. A lone sphere
@@ -213,13 +216,14 @@ void mt__light_sample_l(const mt__light *l, const mt_surface *sf, mt_vec3 p, mt_
          * transform swaps handedness: skip the re-intersection. */
         if ((k == MT_SHAPE_SPHERE || k == MT_SHAPE_DISK) &&
             mt_shape_flip(l->shape) == mt_shape_reverse_orientation(l->shape))
-            ps = mt_shape_sample_from(l->shape, 0, p, u1, u2, &ns);
+            any_dir = mt_shape_sample_from_pdf(l->shape, p, u1, u2, &ns, &ps, &pdf);
         else
             ps = mt_shape_set_sample_from(l->shape, p, ucomp, u1, u2, &ns);
         d = mt_v3_sub(ps, p);
         if (!(mt_v3_len2(d) > 0) || !mt_v3_is_finite(d)) return;
         out->wi = mt_v3_normalize(d);
-        out->pdf = mt_shape_set_pdf_from(l->shape, p, out->wi);
+        out->pdf = any_dir ? pdf : mt_shape_set_pdf_from(l->shape, p, out->wi);
+        out->pdf_any_dir = any_dir;
         out->Li = mt__area_light_l(l, ns, mt_v3_neg(out->wi));
         out->shadow = ray_to(sf, p, ps);
         return;

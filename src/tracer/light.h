@@ -58,6 +58,9 @@ typedef struct mt__light_sample {
     mt_rgb Li;
     mt_vec3 wi;
     mt_real pdf;
+    /* pdf is the light's Pdf(p, w) for every direction w from p (a sphere's
+     * cone): mt__light_pdf at p need not be asked again */
+    int pdf_any_dir;
     mt_ray shadow;
 } mt__light_sample;
 

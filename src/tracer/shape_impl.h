@@ -69,6 +69,11 @@ mt_vec3 mt__disk_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns);
 mt_vec3 mt__cylinder_sample(const mt_shape *s, mt_real u1, mt_real u2, mt_vec3 *ns);
 mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2,
                                mt_vec3 *ns);
+/* The same, and *uniform = 1 with *pdf = mt__sphere_pdf_from's value when
+ * that is the same for every direction (the cone seen from p, which the
+ * sample has just measured). */
+mt_vec3 mt__sphere_sample_from_pdf(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns,
+                                   int *uniform, mt_real *pdf);
 /* 1 with *pdf when the sphere handles Pdf(p, wi) itself (the cone seen
  * from outside). */
 int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi, mt_real *pdf);

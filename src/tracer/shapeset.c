@@ -172,6 +172,23 @@ mt_vec3 mt_shape_set_sample_from(const mt_shape *s, mt_vec3 p, mt_real ucomp, mt
     return mt_ray_at(&r, thit);
 }
 
+int mt_shape_sample_from_pdf(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns,
+                             mt_vec3 *pt, mt_real *pdf)
+{
+    mt_real prim_pdf, sum = 0;
+    int uniform = 0;
+    if (s->kind != MT_SHAPE_SPHERE) {
+        *pt = mt_shape_sample_from(s, 0, p, u1, u2, ns);
+        return 0;
+    }
+    *pt = mt__sphere_sample_from_pdf(s, p, u1, u2, ns, &uniform, &prim_pdf);
+    if (!uniform || !(s->area_sum > 0)) return 0;
+    /* mt_shape_set_pdf_from's sum over the one primitive, as it computes it */
+    sum += s->areas[0] * prim_pdf;
+    *pdf = sum / s->area_sum;
+    return 1;
+}
+
 mt_real mt_shape_set_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi)
 {
     uint32_t n = mt__shape_nprims(s), i;

@@ -238,14 +238,32 @@ static mt_vec3 area_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_rea
     return mt_ray_at(&r, hit.t);
 }
 
-mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns)
+/* pbrt-v2's cone pdf, 0 where the cone is too narrow to be represented
+ * (its Inf). */
+static mt_real cone_pdf(mt_real costhetamax)
+{
+    mt_real pdf = mt_uniform_cone_pdf(costhetamax);
+    return mt_is_finite(pdf) ? pdf : 0;
+}
+
+/* Whether Pdf(p, wi) of a sphere seen from outside is the cone's for every
+ * direction: not when partial-sampling is fixed and the sphere clipped. */
+static int cone_pdf_uniform(const mt_shape *s) { return !((s->mode & MT_FIX_PARTIAL_SAMPLING) && clipped(s)); }
+
+mt_vec3 mt__sphere_sample_from_pdf(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns,
+                                   int *uniform, mt_real *pdf)
 {
     mt_vec3 c = sphere_center(s), wc, wcx, wcy, ps;
     mt_real costhetamax, rad;
     mt_ray r;
     mt_hit hit;
+    *uniform = 0;
     if (!cone_radius(s, &rad)) return area_sample_from(s, p, u1, u2, ns);
     if (!sees_outside(s, p, &costhetamax)) return mt__sphere_sample(s, u1, u2, ns);
+    if (cone_pdf_uniform(s)) {
+        *uniform = 1;
+        *pdf = cone_pdf(costhetamax);
+    }
     wc = mt_v3_normalize(mt_v3_sub(c, p));
     mt_coordinate_system(wc, &wcx, &wcy);
     r = mt_ray_make(p, mt_uniform_sample_cone_frame(u1, u2, costhetamax, wcx, wcy, wc),
@@ -268,16 +286,22 @@ mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real
     return ps;
 }
 
+mt_vec3 mt__sphere_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns)
+{
+    int uniform;
+    mt_real pdf;
+    return mt__sphere_sample_from_pdf(s, p, u1, u2, ns, &uniform, &pdf);
+}
+
 int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi, mt_real *pdf)
 {
     mt_real costhetamax;
     if (!sees_outside(s, p, &costhetamax)) return 0;
-    *pdf = mt_uniform_cone_pdf(costhetamax);
     /* a sphere too small to subtend a representable cone: pbrt-v2's Inf */
-    if (!mt_is_finite(*pdf)) *pdf = 0;
+    *pdf = cone_pdf(costhetamax);
     /* pbrt-v2 answers for any direction; a partial sphere is reached only by
      * the directions that meet it */
-    if ((s->mode & MT_FIX_PARTIAL_SAMPLING) && clipped(s)) {
+    if (!cone_pdf_uniform(s)) {
         mt_ray r = mt_ray_make(p, wi, (mt_real)1e-3, MT_RAY_TMAX);
         if (!mt_shape_occluded(s, 0, &r)) *pdf = 0;
     }
