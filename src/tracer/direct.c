@@ -61,7 +61,7 @@ static mt_rgb light_along(const mt_scene *s, const mt__light *light, const mt_ra
         uint32_t k, n = mt_shape_prim_count(light->shape);
         int any = 0;
         for (k = 0; k < n; ++k)
-            if (mt_shape_intersect(light->shape, k, &r, &hit)) {
+            if (!mt_shape_missed(light->shape, k, &r) && mt_shape_intersect(light->shape, k, &r, &hit)) {
                 r.tmax = hit.t;
                 any = 1;
             }

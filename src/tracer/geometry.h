@@ -185,6 +185,10 @@ typedef struct mt_hit {
  * the ray meets it within [tmin, tmax]. */
 int mt_shape_intersect(const mt_shape *s, uint32_t prim, const mt_ray *r, mt_hit *hit);
 int mt_shape_occluded(const mt_shape *s, uint32_t prim, const mt_ray *r);
+/* 1 when mt_shape_intersect(s, prim, r) certainly returns 0 by a test much
+ * cheaper than it (a sphere whose ball the ray's line misses by far more
+ * than any rounding); 0 when it may hit (or the shape has no such test). */
+int mt_shape_missed(const mt_shape *s, uint32_t prim, const mt_ray *r);
 
 /* A surface point: pbrt-v2's DifferentialGeometry (dg.n is its nn: the
  * normalized dpdu x dpdv in world space, negated when dg.flip) plus what is

@@ -327,6 +327,12 @@ int mt_shape_intersect(const mt_shape *s, uint32_t prim, const mt_ray *r, mt_hit
     return 1;
 }
 
+int mt_shape_missed(const mt_shape *s, uint32_t prim, const mt_ray *r)
+{
+    (void)prim;
+    return s->kind == MT_SHAPE_SPHERE && mt__sphere_missed(s, r);
+}
+
 int mt_shape_occluded(const mt_shape *s, uint32_t prim, const mt_ray *r)
 {
     mt_hit hit;

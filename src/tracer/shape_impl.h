@@ -25,6 +25,12 @@ struct mt_shape {
     mt_real radius, zmin, zmax, phi_max; /* sphere, cylinder; disk: radius, phi_max */
     mt_real theta_min, theta_max;        /* sphere */
     mt_vec3 center;                      /* sphere: o2w of the origin */
+    /* sphere under an affine similarity (else ball_ok = 0): its world
+     * centre rounded to mt_real, |ball_c|_1, and an upper bound of the
+     * squared world radius and of the radius (mt__sphere_missed) */
+    int ball_ok;
+    mt_vec3 ball_c;
+    mt_real ball_c1, ball_r2, ball_r;
     mt_real height, inner_radius;        /* disk */
 
     /* triangle meshes (pbrt-v2 TriangleMesh: P in world space, N and S in
@@ -81,6 +87,10 @@ int mt__sphere_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi, mt_real *pdf);
  * with quadric-scale fixed): its samples are then the first point along
  * their ray and its pdf sums every point along a direction. */
 int mt__sphere_area_sampled(const mt_shape *s);
+/* 1 when the line of r certainly misses the sphere by more than any
+ * rounding of this test and of the double-precision one (mt_shape_intersect
+ * would return 0); 0 when it may not. */
+int mt__sphere_missed(const mt_shape *s, const mt_ray *r);
 
 /* Object-space bounds of a quadric (pbrt-v2 ObjectBound). */
 void mt__quadric_object_bounds(const mt_shape *s, double lo[3], double hi[3]);
