@@ -1,26 +1,35 @@
 #!/bin/sh
 # Measurement 2: samples per pixel. For each scene, materia-render and (when
 # ../shared is present) pbrt-v2 render it at a sweep of sample counts on the
-# same machine, alternating which goes first, with the same thread count;
-# each image's error against a high-sample materia reference (another seed)
-# is computed by $MT_TRADEOFF/imgerr. Writes $OUT/2-spp.csv, the fitted
-# convergence slopes and times-to-error in $OUT/2-spp-summary.csv, plots
-# $OUT/2-spp-rmse.png and $OUT/2-spp-time.png (with gnuplot), and the report
-# section $OUT/2-spp.md.
+# same machine, alternating which goes first, with the same thread count.
+# Each image's error is measured by $MT_TRADEOFF/imgerr against a reference of
+# two materia renders with seeds of their own, each at twice the largest count
+# (four times it in all), whose own noise, estimated from their difference,
+# is taken out of the squared error (tradeoff/imgerr.c, tests/support/sqerr.h).
+# Writes $OUT/2-spp.csv (one row per scene, renderer and count),
+# $OUT/2-spp-reference.csv (the references: their time and how their
+# variance images compare with their measured variance), the fitted slopes and
+# times-to-error in $OUT/2-spp-summary.csv, $OUT/2-spp-relerr.csv, the plots
+# $OUT/2-spp-rmse.png, 2-spp-time.png, 2-spp-relerr.png (with their .gp
+# files) and the report section $OUT/2-spp.md.
 #
 # Environment (tools/run-tradeoff.sh sets the first ones): MT_BIN,
 # MT_TRADEOFF, OUT, QUICK, SHARED, GNUPLOT, TRADEOFF_DIR; and to change the
-# sweep: SPP_SCENES (golden scene names, "none" for none), SPP_LIST, SPP_REF, SPP_REAL (real
-# scene names of ../shared/reference/scenes, "none" for none), SPP_REAL_LIST,
-# SPP_REAL_REF, SPP_REAL_SCALE (resolution divisor of the real scenes),
-# SPP_THREADS (2); SPP_REPORT_ONLY=1 rewrites the summary, plots and
-# section from an earlier run's $OUT/2-spp.csv without rendering.
+# sweep: SPP_SCENES (path-traced golden scenes, "none" for none), SPP_LIST,
+# SPP_DIPOLE (the golden dipole scenes, "none" for none), SPP_DIPOLE_LIST,
+# SPP_REAL (scenes of ../shared/reference/scenes, "none" for none),
+# SPP_REAL_LIST, SPP_REAL_SCALE (resolution divisor of the real scenes), the
+# samples of each of the two reference renders SPP_REF, SPP_DIPOLE_REF,
+# SPP_REAL_REF (default: twice the sweep's largest count), SPP_THREADS (2);
+# SPP_REPORT_ONLY=1 rewrites the summary, plots and section from an earlier
+# run's $OUT/2-spp.csv and 2-spp-reference.csv without rendering.
 set -u
 : "${MT_BIN:?}" "${MT_TRADEOFF:?}" "${OUT:?}"
 QUICK=${QUICK:-0}
 SHARED=${SHARED:-}
 GNUPLOT=${GNUPLOT:-}
 TRADEOFF_DIR=${TRADEOFF_DIR:-$(cd "$(dirname "$0")" && pwd)}
+. "$TRADEOFF_DIR/lib.sh"
 ROOT=$(cd "$TRADEOFF_DIR/.." && pwd)
 # Absolute paths: the renderers run from the scene's folder.
 abspath() { case $1 in /*) echo "$1" ;; *) echo "$PWD/$1" ;; esac; }
@@ -33,25 +42,29 @@ GOLDEN=$ROOT/golden/scenes
 if [ "$QUICK" = 1 ]; then
     SCENES=${SPP_SCENES:-"matte glass measured"}
     SPPS=${SPP_LIST:-"1 4 16 64"}
-    REFSPP=${SPP_REF:-1024}
+    DIPOLE=${SPP_DIPOLE:-none}
     REAL=${SPP_REAL:-none}
 else
-    SCENES=${SPP_SCENES:-"matte plastic glass mirror metal shinymetal substrate translucent uber mix measured subsurface kdsubsurface"}
-    # Up to 1024 spp with the reference at 8x: within an hour on a shared
-    # 2-core machine. SPP_LIST="1 4 16 64 256 1024 4096" SPP_REF=32768 goes
-    # to 4096 (about four times as long).
-    SPPS=${SPP_LIST:-"1 4 16 64 256 1024"}
-    REFSPP=${SPP_REF:-8192}
+    SCENES=${SPP_SCENES:-"matte plastic glass mirror metal shinymetal substrate translucent uber mix measured"}
+    SPPS=${SPP_LIST:-"1 4 16 64 256 1024 4096"}
+    # The dipole scenes' lights take 64 and 16 samples per camera sample: to
+    # 64 spp they cost what the others do to 4096.
+    DIPOLE=${SPP_DIPOLE:-"subsurface kdsubsurface"}
     REAL=${SPP_REAL:-"real-killeroo-simple real-metal-teapot real-bunny-measured"}
 fi
+DIPOLESPPS=${SPP_DIPOLE_LIST:-"1 4 16 64"}
+REALSPPS=${SPP_REAL_LIST:-"1 4 16 64 256"}
+REALSCALE=${SPP_REAL_SCALE:-4}
+largest() { echo "$1" | awk '{ print $NF }'; }
+REFSPP=${SPP_REF:-$((2 * $(largest "$SPPS")))}
+DIPOLEREF=${SPP_DIPOLE_REF:-$((2 * $(largest "$DIPOLESPPS")))}
+REALREF=${SPP_REAL_REF:-$((2 * $(largest "$REALSPPS")))}
 # Slopes are fitted to the points from this count on: below it the process's
 # fixed cost (parse, BVH, writing) dominates the wall time.
 SLOPEMIN=16; [ "$QUICK" = 1 ] && SLOPEMIN=4
-REALSPPS=${SPP_REAL_LIST:-"1 4 16 64 256"}
-REALREF=${SPP_REAL_REF:-2048}
-REALSCALE=${SPP_REAL_SCALE:-4}
-[ "$REAL" = none ] && REAL=
 [ "$SCENES" = none ] && SCENES=
+[ "$DIPOLE" = none ] && DIPOLE=
+[ "$REAL" = none ] && REAL=
 
 for f in "$RENDER" "$IMGERR"; do
     [ -x "$f" ] || { echo "2-spp: $f not found (build it first)" >&2; exit 1; }
@@ -67,7 +80,7 @@ mkdir -p "$OUT"
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/mt-spp.XXXXXX") || exit 1
 trap 'rm -rf "$TMP"' EXIT INT TERM
 CSV=$OUT/2-spp.csv
-printf 'scene,renderer,spp,wall_s,cpu_s,rmse,relmse,rel_p50,rel_p90,rel_p99,noise_mean\n' > "$CSV.tmp"
+REFCSV=$OUT/2-spp-reference.csv
 
 # prep SRC DIR SCALE: DIR gets a copy of scene SRC without the Film's
 # "string filename" (pbrt-v2 ignores --outfile when the Film names a file)
@@ -118,9 +131,10 @@ timed() {
     awk -v a="$t0" -v b="$t1" -v c="$cpu" 'BEGIN { printf "%.3f %s\n", b - a, c }'
 }
 
-# run SCENE DIR RENDERER SPP REF: one render, one CSV row.
+# run SCENE DIR RENDERER SPP: one render, one CSV row (its error against the
+# two references DIR/ref1.exr, DIR/ref2.exr).
 run() {
-    s=$1 d=$2 r=$3 n=$4 ref=$5
+    s=$1 d=$2 r=$3 n=$4
     img=$d/$r-$n.exr
     if [ "$r" = pbrt-v2 ]; then
         pbrt_scene "$d" "$n" || return 1
@@ -128,10 +142,10 @@ run() {
     else
         tw=$(cd "$d" && timed "$d/$r-$n.log" "$RENDER" "$d/scene.pbrt" -o "$img" --spp "$n" --threads "$THREADS" --quiet) || return 1
     fi
-    e=$("$IMGERR" "$img" "$ref") || return 1
+    e=$("$IMGERR" "$img" "$d/ref1.exr" "$d/ref2.exr") || return 1
     echo "$s $r $n $tw $e" | awk '{ $1 = $1; gsub(/ /, ","); print }' >> "$CSV.tmp"
     rm -f "$img"
-    echo "  $s $r spp $n: wall/cpu s $tw, rmse relmse p50 p90 p99 noise $e" >&2
+    echo "  $s $r spp $n: wall/cpu s $tw, rmse relmse p50 p90 p99 noise rmse_raw ref_share $e" >&2
 }
 
 # sweep SCENE SRC SCALE REFSPP SPPS...
@@ -146,9 +160,19 @@ sweep() {
         "$MT_BIN/materia-merl" --out "$d/plastic.merl" - < "$ROOT/golden/plastic-merl.txt" ||
             { echo "2-spp: materia-merl failed" >&2; return 1; }
     fi
-    echo "2-spp: $s: reference at $rs spp (materia, seed 1)" >&2
-    (cd "$d" && "$RENDER" "$d/scene.pbrt" -o "$d/ref.exr" --spp "$rs" --seed 1 --threads "$THREADS" --quiet) ||
-        { echo "2-spp: reference render of $s failed" >&2; return 1; }
+    # Two references with seeds of their own (the sweep's materia renders use
+    # seed 0): their mean is the reference, their difference measures its
+    # noise. Their variance images are kept only to compare them with it.
+    echo "2-spp: $s: two references at $rs spp each (materia, seeds 1 and 2)" >&2
+    rw=0
+    for k in 1 2; do
+        t=$(cd "$d" && timed "$d/ref$k.log" "$RENDER" "$d/scene.pbrt" -o "$d/ref$k.exr" --variance "$d/var$k.exr" \
+            --spp "$rs" --seed "$k" --threads "$THREADS" --quiet) ||
+            { echo "2-spp: reference render of $s failed" >&2; return 1; }
+        rw=$(echo "$rw $t" | awk '{ printf "%.3f", $1 + $2 }')
+    done
+    v=$("$IMGERR" --variance-check "$d/ref1.exr" "$d/var1.exr" "$d/ref2.exr" "$d/var2.exr") || return 1
+    echo "$s $rs $rw $v" | awk '{ $1 = $1; gsub(/ /, ","); print }' >> "$REFCSV.tmp"
     k=0
     for n in "$@"; do
         # Alternate which renderer goes first, so that neither always meets
@@ -156,33 +180,45 @@ sweep() {
         if [ -z "$PBRT" ]; then order=materia
         elif [ $((k % 2)) = 0 ]; then order="pbrt-v2 materia"
         else order="materia pbrt-v2"; fi
-        for r in $order; do run "$s" "$d" "$r" "$n" "$d/ref.exr" || return 1; done
+        for r in $order; do run "$s" "$d" "$r" "$n" || return 1; done
         k=$((k + 1))
     done
     rm -rf "$d"
 }
 
 START=$(date +%s)
-if [ "${SPP_REPORT_ONLY:-0}" = 1 ] && [ -s "$CSV" ]; then
+if [ "${SPP_REPORT_ONLY:-0}" = 1 ] && [ -s "$CSV" ] && [ -s "$REFCSV" ]; then
     # Only the summary, plots and section again, from the CSV of an earlier
     # run (with the same sweep settings); its duration is kept beside it.
-    rm -f "$CSV.tmp"
     ELAPSED=$(cat "$OUT/2-spp.seconds" 2>/dev/null || echo "?")
 else
-    for s in $SCENES; do
+    printf 'scene,renderer,spp,wall_s,cpu_s,rmse,relmse,rel_p50,rel_p90,rel_p99,noise_mean,rmse_raw,ref_share\n' > "$CSV.tmp"
+    printf 'scene,ref_spp_each,wall_s_both,variance_measured,variance_claimed,claimed_over_measured\n' > "$REFCSV.tmp"
+    for s in $SCENES $DIPOLE; do
         [ -f "$GOLDEN/$s.pbrt" ] || { echo "2-spp: no golden scene $s" >&2; exit 1; }
+    done
+    for s in $SCENES; do
         # shellcheck disable=SC2086
         sweep "$s" "$GOLDEN/$s.pbrt" 1 "$REFSPP" $SPPS || exit 1
+    done
+    for s in $DIPOLE; do
+        # shellcheck disable=SC2086
+        sweep "$s" "$GOLDEN/$s.pbrt" 1 "$DIPOLEREF" $DIPOLESPPS || exit 1
     done
     for s in $REAL; do
         # shellcheck disable=SC2086
         sweep "$s" "$SHARED/reference/scenes/$s.pbrt" "$REALSCALE" "$REALREF" $REALSPPS || exit 1
     done
     mv "$CSV.tmp" "$CSV"
+    mv "$REFCSV.tmp" "$REFCSV"
     ELAPSED=$(($(date +%s) - START))
     echo "$ELAPSED" > "$OUT/2-spp.seconds"
 fi
-
+# Rows grouped by scene (in the sweep's order), then renderer, then count:
+# each curve is one run of rows, as the plots and the summary read them.
+awk -F, 'NR == 1 { next } { if (!($1 in o)) o[$1] = ++k; print o[$1] "," $0 }' "$CSV" |
+    sort -t, -k1,1n -k3,3 -k4,4n | cut -d, -f2- > "$TMP/rows"
+{ head -1 "$CSV"; cat "$TMP/rows"; } > "$CSV.tmp" && mv "$CSV.tmp" "$CSV"
 # Per scene and renderer: the least-squares slope of log RMSE against log spp
 # and against log wall time; the error pbrt-v2 reaches at 1024 spp (or at its
 # largest spp when the sweep stops below) and the wall time each renderer
@@ -240,103 +276,125 @@ END {
     }
 }' smin="$SLOPEMIN" "$CSV" > "$SUM.tmp" && mv "$SUM.tmp" "$SUM"
 
-# Plots: one panel per scene, RMSE against spp and against wall time.
-PLOTS=
-# the scenes of the CSV, in its order (in SPP_REPORT_ONLY runs too)
-PSCENES=$(awk -F, 'NR > 1 && !($1 in seen) { seen[$1] = 1; print $1 }' "$CSV")
-if [ -n "$GNUPLOT" ]; then
-    for s in $PSCENES; do
-        for r in materia pbrt-v2; do
-            awk -F, -v s="$s" -v r="$r" '$1 == s && $2 == r { print $3, $4, $6 }' "$CSV" > "$TMP/$s.$r.dat"
-        done
-    done
-    np=$(echo $PSCENES | wc -w)
-    cols=4; [ "$np" -le 4 ] && cols=$np
-    rows=$(((np + cols - 1) / cols))
-    for what in rmse time; do
-        gp=$TMP/$what.gp
-        {
-            if [ -f "$TRADEOFF_DIR/style.gp" ]; then
-                echo "load '$TRADEOFF_DIR/style.gp'"
-            fi
-            w=$((cols * 330)); [ $w -lt 660 ] && w=660
-            echo "set terminal pngcairo size $w,$((rows * 260 + 40)) enhanced font 'DejaVu Sans,9'"
-            # the data files here are whitespace-separated (the shared style reads CSV)
-            echo "set datafile separator whitespace"
-            echo "set output '$OUT/2-spp-$what.png'"
-            echo "set logscale xy; set format y '10^{%L}'; set grid"
-            echo "set key top right"
-            if [ $what = rmse ]; then
-                echo "set xlabel 'samples per pixel'; set format x '%g'"
-                title="RMSE against samples per pixel"
-                col=1
-            else
-                echo "set xlabel 'wall time per image (s)'; set format x '%g'"
-                title="RMSE against wall time ($THREADS threads each)"
-                col=2
-            fi
-            echo "set ylabel 'RMSE (radiance)'"
-            echo "set multiplot layout $rows,$cols title \"$title\""
-            for s in $PSCENES; do
-                echo "set title '$s'"
-                p="plot '$TMP/$s.materia.dat' using $col:3 with linespoints lc rgb '#1f77b4' pt 7 ps 0.6 lw 1.5 title 'materia'"
-                [ -s "$TMP/$s.pbrt-v2.dat" ] &&
-                    p="$p, '$TMP/$s.pbrt-v2.dat' using $col:3 with linespoints lc rgb '#d62728' pt 5 ps 0.6 lw 1.5 dt 2 title 'pbrt-v2'"
-                echo "$p"
-            done
-            echo "unset multiplot"
-        } > "$gp"
-        "$GNUPLOT" "$gp" || { echo "2-spp: gnuplot failed on $gp" >&2; exit 1; }
-        PLOTS="$PLOTS 2-spp-$what.png"
-    done
-    # The relative-error percentiles, geometric mean over the golden scenes.
-    for r in materia pbrt-v2; do
-        awk -F, -v r="$r" -v scenes="$SCENES" 'BEGIN { split(scenes, a, " "); for (i in a) g[a[i]] = 1 }
-            NR > 1 && $2 == r && ($1 in g) && $8 > 0 && $10 > 0 {
-                if (!($3 in n)) o[++k] = $3; n[$3]++; p50[$3] += log($8); p90[$3] += log($9); p99[$3] += log($10) }
-            END { for (i = 1; i <= k; i++) { x = o[i]; printf "%s %.5g %.5g %.5g\n", x, exp(p50[x] / n[x]), exp(p90[x] / n[x]), exp(p99[x] / n[x]) } }' \
-            "$CSV" > "$TMP/rel.$r.dat"
-    done
-    {
-        if [ -f "$TRADEOFF_DIR/style.gp" ]; then echo "load '$TRADEOFF_DIR/style.gp'"; fi
-        echo "set terminal pngcairo size 760,500 enhanced font 'DejaVu Sans,10'"
-        echo "set datafile separator whitespace"
-        echo "set output '$OUT/2-spp-relerr.png'"
-        echo "set logscale xy; set format y '10^{%L}'; set format x '%g'; set grid; set key top right box opaque"
-        echo "set xlabel 'samples per pixel'; set ylabel 'relative error |a - b| / (b + 0.01)'"
-        echo "set title 'Relative error percentiles over pixels, geometric mean over the golden scenes'"
-        p="plot '$TMP/rel.materia.dat' using 1:2 with linespoints lc rgb '#1f77b4' pt 7 lw 1.5 title 'materia, median'"
-        p="$p, '' using 1:4 with linespoints lc rgb '#1f77b4' pt 9 lw 1.5 title 'materia, 99th percentile'"
-        if [ -s "$TMP/rel.pbrt-v2.dat" ]; then
-            p="$p, '$TMP/rel.pbrt-v2.dat' using 1:2 with linespoints lc rgb '#d62728' pt 5 lw 1.5 dt 2 title 'pbrt-v2, median'"
-            p="$p, '' using 1:4 with linespoints lc rgb '#d62728' pt 11 lw 1.5 dt 2 title 'pbrt-v2, 99th percentile'"
-        fi
-        echo "$p"
-    } > "$TMP/rel.gp"
-    "$GNUPLOT" "$TMP/rel.gp" || { echo "2-spp: gnuplot failed on $TMP/rel.gp" >&2; exit 1; }
-    PLOTS="$PLOTS 2-spp-relerr.png"
-fi
+# The relative-error percentiles, geometric means over the path-traced golden
+# scenes, per renderer and count.
+REL=$OUT/2-spp-relerr.csv
+awk -F, -v scenes="$SCENES" 'BEGIN { split(scenes, a, " "); for (i in a) g[a[i]] = 1; print "renderer,spp,rel_p50,rel_p90,rel_p99,scenes" }
+    NR > 1 && ($1 in g) && $8 > 0 && $10 > 0 {
+        k = $2 "," $3; if (!(k in n)) o[++m] = k; n[k]++; p50[k] += log($8); p90[k] += log($9); p99[k] += log($10) }
+    END { for (i = 1; i <= m; i++) { k = o[i]; printf "%s,%.5g,%.5g,%.5g,%d\n", k, exp(p50[k] / n[k]), exp(p90[k] / n[k]), exp(p99[k] / n[k]), n[k] } }' \
+    "$CSV" > "$REL.tmp" && mv "$REL.tmp" "$REL"
 
+# Plots: one panel per scene, RMSE against spp and against wall time, the
+# two renderers' rows of 2-spp.csv selected in gnuplot; the percentiles.
+status=0
+PSCENES=$(awk -F, 'NR > 1 && !($1 in seen) { seen[$1] = 1; print $1 }' "$CSV")
+np=$(echo $PSCENES | wc -w)
+cols=4; [ "$np" -le 4 ] && cols=$np
+rows=$(((np + cols - 1) / cols))
+w=$((cols * 330)); [ $w -lt 660 ] && w=660
+# series SCENE RENDERER XCOL: the plot clause of one curve
+series() {
+    sel="strcol(1) eq '$1' && strcol(2) eq '$2'"
+    if [ "$2" = materia ]; then look="lc rgb '#1f77b4' pt 7 ps 0.6 lw 1.5"; else look="lc rgb '#d62728' pt 5 ps 0.6 lw 1.5 dt 2"; fi
+    printf "'2-spp.csv' using (%s ? column(%s) : NaN):(column(6)) with linespoints %s title '%s'" "$sel" "$3" "$look" "$2"
+}
+PLOTMD=
+for what in rmse time; do
+    if [ $what = rmse ]; then
+        xl="samples per pixel"; title="RMSE against samples per pixel"; col=3
+    else
+        xl="wall time per image (s)"; title="RMSE against wall time ($THREADS threads each)"; col=4
+    fi
+    cmds="set logscale xy; set format y '10^{%L}'; set format x '%g'; set grid
+set key top right
+set xlabel '$xl'
+set ylabel 'RMSE (radiance)'
+set multiplot layout $rows,$cols title \"$title\""
+    for s in $PSCENES; do
+        p="plot $(series "$s" materia $col)"
+        grep -q "^$s,pbrt-v2," "$CSV" && p="$p, $(series "$s" pbrt-v2 $col)"
+        cmds="$cmds
+set title '$s'
+$p"
+    done
+    cmds="$cmds
+unset multiplot"
+    md=$(tr_plot "2-spp-$what" "$title" "2-spp.csv" "$cmds" \
+        "size $w,$((rows * 260 + 40)) enhanced font 'DejaVu Sans,9'") || status=1
+    PLOTMD="$PLOTMD$md
+
+"
+done
+cmds="set logscale xy; set format y '10^{%L}'; set format x '%g'; set grid; set key top right box opaque
+set xlabel 'samples per pixel'; set ylabel 'relative error |a - b| / (b + 0.01)'
+set title 'Relative error percentiles over pixels, geometric mean over the golden scenes'
+plot '2-spp-relerr.csv' using (strcol(1) eq 'materia' ? column(2) : NaN):(column(3)) with linespoints lc rgb '#1f77b4' pt 7 lw 1.5 title 'materia, median', \\
+     '' using (strcol(1) eq 'materia' ? column(2) : NaN):(column(5)) with linespoints lc rgb '#1f77b4' pt 9 lw 1.5 title 'materia, 99th percentile'"
+if grep -q "^pbrt-v2," "$REL"; then
+    cmds="$cmds, \\
+     '' using (strcol(1) eq 'pbrt-v2' ? column(2) : NaN):(column(3)) with linespoints lc rgb '#d62728' pt 5 lw 1.5 dt 2 title 'pbrt-v2, median', \\
+     '' using (strcol(1) eq 'pbrt-v2' ? column(2) : NaN):(column(5)) with linespoints lc rgb '#d62728' pt 11 lw 1.5 dt 2 title 'pbrt-v2, 99th percentile'"
+fi
+md=$(tr_plot 2-spp-relerr "Relative error percentiles against samples per pixel" "2-spp-relerr.csv" "$cmds") || status=1
+PLOTMD="$PLOTMD$md
+"
 # The report section.
+list() { echo $1 | sed 's/ /, /g'; }
+# at the largest count of each path-traced golden scene: the median and the
+# largest share of the reference's noise in the raw squared error (column 13)
+refshare=$(awk -F, -v scenes="$SCENES" 'BEGIN { split(scenes, a, " "); for (i in a) g[a[i]] = 1 }
+    NR > 1 && ($1 in g) && $13 != "NA" { k = $1 SUBSEP $2; if ($3 + 0 >= top[k] + 0) { top[k] = $3; v[k] = $13 } }
+    END { n = 0; for (k in v) x[++n] = v[k] + 0
+          for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (x[j] < x[i]) { t = x[i]; x[i] = x[j]; x[j] = t }
+          if (n) printf "%.0f%% %.0f%% %.0f%%\n", 100 * x[int((n + 1) / 2)], 100 * x[n], 100 * (1 / sqrt(1 - x[n]) - 1) }' "$CSV")
 MD=$OUT/2-spp.md
 {
     echo "## 2. Samples per pixel"
     echo
-    echo "What a sample buys: the error of an image against a high-sample reference as a function"
-    echo "of the samples per pixel and of the wall time, for materia-render and pbrt-v2 side by side."
-    echo "Scenes: the golden scenes \`golden/scenes/\` ($(echo $SCENES | wc -w): $SCENES), at their own"
-    echo "64x48 pixels, sample counts $(echo $SPPS | tr ' ' ','); reference: materia-render at $REFSPP spp with"
-    echo "another seed (\`--seed 1\`)."
+    echo "What a sample buys: the error of an image against a converged reference as a function of"
+    echo "the samples per pixel and of the wall time, for materia-render and pbrt-v2 side by side."
+    echo "Scenes: the golden scenes \`golden/scenes/\` at their own 64x48 pixels, the path-traced ones"
+    echo "($(echo $SCENES | wc -w): $SCENES) at $(list "$SPPS") spp$( [ -n "$DIPOLE" ] && echo ", the dipole ones ($DIPOLE) at $(list "$DIPOLESPPS") spp (their lights take 64 and 16 samples per camera sample)")."
     if [ -n "$REAL" ]; then
         echo "Real scenes of \`../shared/reference/scenes\` ($REAL) at 1/$REALSCALE of their resolution,"
-        echo "sample counts $(echo $REALSPPS | tr ' ' ','), reference at $REALREF spp."
+        echo "$(list "$REALSPPS") spp."
     fi
-    echo "Error: RMSE over pixels and channels, and percentiles of the relative error"
-    echo "\`|a - b| / (b + 0.01)\` per pixel and channel (columns of \`2-spp.csv\`, computed by"
-    echo "\`tradeoff/imgerr.c\`). Wall time is the whole process (parse, BVH, render, write), both"
-    echo "renderers with $THREADS threads, run back to back on the same machine, alternating which goes"
-    echo "first at each sample count. The reference's own noise adds to the error of the largest"
-    echo "count ($(echo $SPPS | awk '{ print $NF }') spp, against $REFSPP): by $(awk -v a="$(echo $SPPS | awk '{ print $NF }')" -v b="$REFSPP" 'BEGIN { printf "%.0f%%", 100 * (sqrt(1 + a / b) - 1) }') if the error falls as 1/sqrt(spp)."
+    echo
+    echo "**The reference and its noise.** Each scene's reference is the mean b of two materia renders"
+    echo "with seeds 1 and 2 (the sweep's materia renders use seed 0), each at twice the sweep's largest"
+    echo "count ($REFSPP spp$( [ -n "$DIPOLE" ] && echo ", $DIPOLEREF for the dipole scenes")$( [ -n "$REAL" ] && echo ", $REALREF for the real ones")): four times it in all. The error"
+    echo "of an image a is RMSE = sqrt(mean((a - b)^2 - vb)) over pixels and colour channels, with vb ="
+    echo "(r1 - r2)^2 / 4 the reference's noise measured by its two halves: since E[(a - b)^2] ="
+    echo "E[(a - mu)^2] + Var(b) for independent a and b (mu the converged image) and E[vb] = Var(b),"
+    echo "this is a's error against mu without the reference's own, whatever the sampler"
+    echo "(\`tradeoff/imgerr.c\`; \`tests/test_sqerr.c\` checks it against known answers, and that"
+    echo "leaving vb out, or taking it from a low-discrepancy render's own variance image, misses)."
+    if [ -n "$refshare" ]; then
+        set -- $refshare
+        echo "At the largest count the reference's noise was $1 of the raw squared error (the median"
+        echo "over the path-traced scenes and renderers; at most $2), which the raw RMSE (\`rmse_raw\` in"
+        echo "\`2-spp.csv\`) would have counted."
+        echo "What remains: the square root of an unbiased mean square is low by about its relative"
+        echo "variance / 8 (for Gaussian noise over the 9216 values of a 64x48 image, (2/9216) / 8 ="
+        echo "3e-5); a difference between pbrt-v2's converged image and"
+        echo "materia's counts as pbrt-v2's error, as it should. The relative-error percentiles and"
+        echo "pbrt-v2's block metric keep the reference's noise: at the largest count it raises them by"
+        echo "up to $3 (for Gaussian noise, 1/sqrt(1 - share))."
+    fi
+    if [ -s "$REFCSV" ]; then
+        awk -F, 'NR > 1 && $6 != "NA" { x[++n] = $6 + 0; s[n] = $1 }
+            END { if (!n) exit
+                  for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (x[j] < x[i]) { t = x[i]; x[i] = x[j]; x[j] = t; t = s[i]; s[i] = s[j]; s[j] = t }
+                  printf "materia-render'\''s own variance image (`--variance`, the sample variance over the count)\n"
+                  printf "claims %.2f times the variance measured between the two references (median over the\n", x[int((n + 1) / 2)]
+                  printf "scenes; %.2f (%s) to %.2f (%s), `2-spp-reference.csv`): its low-discrepancy samples do\n", x[1], s[1], x[n], s[n]
+                  printf "better than independent ones, so subtracting it would remove too much.\n" }' "$REFCSV"
+    fi
+    echo
+    echo "Wall time is the whole process (parse, BVH, render, write), both renderers with $THREADS"
+    echo "threads, run back to back on the same machine, alternating which goes first at each count;"
+    echo "CPU time is user + sys, steadier on a loaded machine."
     if [ -n "$PBRT" ]; then
         echo "pbrt-v2: \`../shared/baselines/pbrt-v2/pbrt\`, its \`lowdiscrepancy\` sampler at the same sample"
         echo "count (the scene's \`pixelsamples\` rewritten in a copy); materia uses its own sampler."
@@ -347,14 +405,7 @@ MD=$OUT/2-spp.md
         echo "materia's curves are here and there are no ratios."
     fi
     echo
-    if [ -n "$PLOTS" ]; then
-        for p in $PLOTS; do echo "![$p]($p)"; echo; done
-    else
-        echo "gnuplot was not found: the data are in \`2-spp.csv\` (one row per scene, renderer and"
-        echo "spp) and \`2-spp-summary.csv\`. To plot: \`set datafile separator ','; set logscale xy\`,"
-        echo "then RMSE (column 6) against spp (column 3) or wall time (column 4) per scene and renderer."
-        echo
-    fi
+    printf '%s\n' "$PLOTMD"
     echo "Convergence slopes (least squares of log RMSE against log spp and log wall time over the"
     echo "counts from $SLOPEMIN spp on, where the fixed cost of a run no longer dominates; -0.5 is"
     echo "plain Monte Carlo), and the time each renderer needs to reach the RMSE pbrt-v2 reaches at"
@@ -385,3 +436,4 @@ MD=$OUT/2-spp.md
     echo "Measured by \`$(if [ "$QUICK" = 1 ]; then echo "make tradeoff QUICK=1"; else echo "make tradeoff"; fi)\` (\`tradeoff/2-spp.sh\`) in ${ELAPSED} s of wall time."
 } > "$MD.tmp" && mv "$MD.tmp" "$MD"
 echo "2-spp: wrote $CSV, $SUM, $MD" >&2
+exit $status

@@ -10,31 +10,35 @@ tr_need() {
     done
 }
 
-# tr_plot NAME TITLE CSV_FILES GNUPLOT_COMMANDS
+# tr_plot NAME TITLE CSV_FILES GNUPLOT_COMMANDS [TERMINAL_OPTIONS]
 # Writes $OUT/NAME.gp (the style, the output NAME.png, the commands; data
 # files are named relative to $OUT) and, when GNUPLOT is set, runs it in $OUT.
+# TERMINAL_OPTIONS (e.g. "size 1100,560 enhanced font 'DejaVu Sans,9'")
+# replace the style's pngcairo options, for a plot of several panels.
 # Prints the section's Markdown for the plot: the image, or without gnuplot
-# the data files and the command that draws it.
+# the data files and the command that draws it. Status 1 when gnuplot failed.
 tr_plot() {
-    name=$1; title=$2; csvs=$3; cmds=$4
+    _tp_name=$1; _tp_title=$2; _tp_csvs=$3; _tp_cmds=$4; _tp_term=${5:-}
     {
-        echo "# $title (tools/run-tradeoff.sh; data: $csvs)"
+        echo "# $_tp_title (tools/run-tradeoff.sh; data: $_tp_csvs)"
         echo "load '$TRADEOFF_DIR/style.gp'"
-        echo "set output '$name.png'"
-        printf '%s\n' "$cmds"
-    } >"$OUT/$name.gp"
+        [ -n "$_tp_term" ] && echo "set terminal pngcairo $_tp_term"
+        echo "set output '$_tp_name.png'"
+        printf '%s\n' "$_tp_cmds"
+    } >"$OUT/$_tp_name.gp"
     if [ -n "$GNUPLOT" ]; then
-        if (cd "$OUT" && "$GNUPLOT" "$name.gp" 2>"$name.gp.log"); then
-            echo "![$title]($name.png)"
+        if (cd "$OUT" && "$GNUPLOT" "$_tp_name.gp" 2>"$_tp_name.gp.log"); then
+            rm -f "$OUT/$_tp_name.gp.log"
+            echo "![$_tp_title]($_tp_name.png)"
             return 0
         fi
-        echo "gnuplot failed on $OUT/$name.gp:" >&2
-        cat "$OUT/$name.gp.log" >&2
-        echo "(gnuplot failed on \`$name.gp\`: the data is in $csvs)"
+        echo "gnuplot failed on $OUT/$_tp_name.gp:" >&2
+        cat "$OUT/$_tp_name.gp.log" >&2
+        echo "(gnuplot failed on \`$_tp_name.gp\`: the data is in $_tp_csvs)"
         return 1
     fi
-    echo "*$title*: data in $csvs; without gnuplot in this run, plot it with"
-    echo "\`cd $OUT && gnuplot $name.gp\`."
+    echo "*$_tp_title*: data in $_tp_csvs; without gnuplot in this run, plot it with"
+    echo "\`cd $OUT && gnuplot $_tp_name.gp\`."
 }
 
 # tr_csv_value FILE COLUMN_NAME ROW_KEY_COLUMN ROW_KEY: one value of a CSV
