@@ -4,9 +4,11 @@
 # anisotropies, each filter's error against a brute-force box average over
 # the sample's footprint and its time per lookup, for the image map (none,
 # trilinear, EWA with maxanisotropy 1 to 64, supersampling) and the
-# checkerboard (aamode none, closedform, supersampling). This script plots
-# them and writes the report section $OUT/3-filtering.md. Environment:
-# MT_TRADEOFF, OUT, QUICK, GNUPLOT, TRADEOFF_DIR (tools/run-tradeoff.sh).
+# checkerboard (aamode none, closedform, supersampling). This script sums
+# them up ($OUT/3-filtering-overall.csv, 3-filtering-series.csv), plots them
+# (3-filtering-time, -aniso, -size: .gp, and .png with gnuplot) and writes the
+# report section $OUT/3-filtering.md. Environment: MT_TRADEOFF, OUT, QUICK,
+# GNUPLOT, TRADEOFF_DIR (tools/run-tradeoff.sh).
 set -u
 : "${MT_TRADEOFF:?}" "${OUT:?}"
 QUICK=${QUICK:-0}
@@ -28,106 +30,111 @@ else
 fi
 I=$OUT/3-filtering-imagemap.csv
 C=$OUT/3-filtering-checker.csv
-TMP=$(mktemp -d "${TMPDIR:-/tmp}/mt-filtering.XXXXXX") || exit 1
-trap 'rm -rf "$TMP"' EXIT INT TERM
+. "$TRADEOFF_DIR/lib.sh"
+status=0
 
-# Per mode (and parameter) over the whole sweep: the RMS of the groups' RMS
-# errors (cell and wide truth) and the mean time per lookup.
+# Per texture, mode and parameter over the whole sweep: the RMS of the
+# groups' RMS errors (cell and wide truth) and the mean time per lookup.
+OV=$OUT/3-filtering-overall.csv
 overall() {
-    awk -F, 'NR > 1 { k = $1 "," $2; if (!(k in n)) o[++m] = k; n[k]++; e[k] += $5 * $5; w[k] += $6 * $6; t[k] += $7 }
-        END { for (i = 1; i <= m; i++) { k = o[i]; printf "%s,%.4g,%.4g,%.1f\n", k, sqrt(e[k] / n[k]), sqrt(w[k] / n[k]), t[k] / n[k] } }' "$1"
+    awk -F, -v tex="$2" 'NR > 1 { k = $1 "," $2; if (!(k in n)) o[++m] = k; n[k]++; e[k] += $5 * $5; w[k] += $6 * $6; t[k] += $7 }
+        END { for (i = 1; i <= m; i++) { k = o[i]; printf "%s,%s,%.4g,%.4g,%.1f\n", tex, k, sqrt(e[k] / n[k]), sqrt(w[k] / n[k]), t[k] / n[k] } }' "$1"
 }
-overall "$I" > "$TMP/i-overall.csv"
-overall "$C" > "$TMP/c-overall.csv"
+{
+    echo "texture,mode,param,rms_err,rms_err_wide,ns_per_lookup"
+    overall "$I" imagemap
+    overall "$C" checker
+} > "$OV.tmp" && mv "$OV.tmp" "$OV"
 
-# series FILE MODE PARAM XCOL: "x error" rows of one mode, the RMS over the
-# other sweep variable (XCOL 3: size, 4: anisotropy).
+# The error of a mode against one sweep variable, the RMS over the other:
+# one run of rows per texture, mode, parameter and axis (size: column 3 of
+# the data, aniso: column 4).
+SE=$OUT/3-filtering-series.csv
 series() {
-    awk -F, -v m="$2" -v p="$3" -v xc="$4" 'NR > 1 && $1 == m && $2 == p {
+    awk -F, -v tex="$2" -v m="$3" -v p="$4" -v axis="$5" -v xc="$6" 'NR > 1 && $1 == m && $2 == p {
         x = $xc; if (!(x in n)) o[++k] = x; n[x]++; e[x] += $5 * $5 }
-        END { for (i = 1; i <= k; i++) printf "%s %.5g\n", o[i], sqrt(e[o[i]] / n[o[i]]) }' "$1"
+        END { for (i = 1; i <= k; i++) printf "%s,%s,%s,%s,%s,%.5g\n", tex, m, p, axis, o[i], sqrt(e[o[i]] / n[o[i]]) }' "$1"
 }
-
-PLOTS=
-if [ -n "$GNUPLOT" ]; then
-    # error against time: one point per mode, EWA and supersampling as lines
-    # overall rows: mode, parameter, error (cell), error (wide), ns per lookup
-    awk -F, '$1 == "ewa" { print $5, $2, $3 }' "$TMP/i-overall.csv" > "$TMP/i-ewa.dat"
-    awk -F, '$1 == "supersampled" { print $5, $2 * $2, $3 }' "$TMP/i-overall.csv" > "$TMP/i-ss.dat"
-    awk -F, '$1 == "supersampled" { print $5, $2 * $2, $3 }' "$TMP/c-overall.csv" > "$TMP/c-ss.dat"
-    for m in none trilinear trilinear-corrected; do
-        awk -F, -v m=$m '$1 == m { print $5, $3 }' "$TMP/i-overall.csv" > "$TMP/i-$m.dat"
-    done
-    for m in none closedform; do
-        awk -F, -v m=$m '$1 == m { print $5, $3 }' "$TMP/c-overall.csv" > "$TMP/c-$m.dat"
-    done
-    for x in 3 4; do
+{
+    echo "texture,mode,param,axis,x,rms_err"
+    for a in "size 3" "aniso 4"; do
+        set -- $a; axis=$1; xc=$2
         for m in "none 0" "trilinear 0" "trilinear-corrected 0" "ewa 8" "ewa 64" "supersampled 4"; do
-            set -- $m; series "$I" "$1" "$2" $x > "$TMP/i-$1-$2-$x.dat"
+            set -- $m; series "$I" imagemap "$1" "$2" "$axis" "$xc"
         done
         for m in "none 0" "closedform 0" "supersampled 4" "supersampled 16"; do
-            set -- $m; series "$C" "$1" "$2" $x > "$TMP/c-$1-$2-$x.dat"
+            set -- $m; series "$C" checker "$1" "$2" "$axis" "$xc"
         done
     done
-    gp_head() {
-        if [ -f "$TRADEOFF_DIR/style.gp" ]; then echo "load '$TRADEOFF_DIR/style.gp'"; fi
-        echo "set terminal pngcairo size 1100,560 enhanced font 'DejaVu Sans,10'"
-        # the data files here are whitespace-separated (the shared style reads CSV)
-        echo "set datafile separator whitespace"
-        echo "set output '$OUT/$1'"
-        echo "set grid; set logscale xy; set format y '10^{%L}'; set format x '%g'; set key below horizontal maxcols 2 width -4; set bmargin 9"
-        echo "set multiplot layout 1,2"
-    }
-    {
-        gp_head 3-filtering-time.png
-        echo "set xlabel 'time per lookup (ns, one thread)'; set ylabel 'RMS error (texture values span [0, 1])'"
-        echo "set title 'Image map (512^2): error against cost, whole sweep'"
-        echo "plot '$TMP/i-ewa.dat' using 1:3 with linespoints pt 7 lw 1.5 title 'EWA, maxanisotropy 1..64', \
-'' using 1:3:(sprintf('%d', \$2)) with labels offset 1.2,0.6 font ',8' notitle, \
-'$TMP/i-ss.dat' using 1:3 with linespoints pt 5 lw 1.5 dt 2 title 'supersampled, 4..64 bilinear lookups', \
-'$TMP/i-none.dat' using 1:2 with points pt 9 ps 1.6 title 'none (bilinear, level 0)', \
-'$TMP/i-trilinear.dat' using 1:2 with points pt 11 ps 1.6 title 'trilinear (pbrt-v2 width)', \
-'$TMP/i-trilinear-corrected.dat' using 1:2 with points pt 13 ps 1.6 title 'trilinear (corrected width)'"
-        echo "set title 'Checkerboard: error against cost, whole sweep'"
-        echo "plot '$TMP/c-ss.dat' using 1:3 with linespoints pt 5 lw 1.5 dt 2 title 'supersampled, 4..256 lookups', \
-'' using 1:3:(sprintf('%d', \$2)) with labels offset 1.2,0.6 font ',8' notitle, \
-'$TMP/c-none.dat' using 1:2 with points pt 9 ps 1.6 title 'aamode none', \
-'$TMP/c-closedform.dat' using 1:2 with points pt 11 ps 1.6 title 'aamode closedform'"
-        echo "unset multiplot"
-    } > "$TMP/time.gp"
-    for x in 3 4; do
-        if [ $x = 3 ]; then name=3-filtering-size.png; else name=3-filtering-aniso.png; fi
-        {
-            gp_head $name
-            echo "set ylabel 'RMS error (texture values span [0, 1])'"
-            if [ $x = 3 ]; then
-                echo "set xlabel 'footprint: major semi-axis |d0| (texels)'; set title 'Image map: error against footprint size (all anisotropies)'"
-            else
-                echo "set xlabel 'anisotropy |d0| / |d1|'; set title 'Image map: error against anisotropy (all sizes)'"
-            fi
-            echo "plot '$TMP/i-none-0-$x.dat' with linespoints pt 9 lw 1.5 title 'none', \
-'$TMP/i-trilinear-0-$x.dat' with linespoints pt 11 lw 1.5 title 'trilinear (pbrt-v2 width)', \
-'$TMP/i-trilinear-corrected-0-$x.dat' with linespoints pt 13 lw 1.5 title 'trilinear (corrected width)', \
-'$TMP/i-ewa-8-$x.dat' with linespoints pt 7 lw 1.5 title 'EWA, maxanisotropy 8 (default)', \
-'$TMP/i-ewa-64-$x.dat' with linespoints pt 6 lw 1.5 title 'EWA, maxanisotropy 64', \
-'$TMP/i-supersampled-4-$x.dat' with linespoints pt 5 lw 1.5 dt 2 title 'supersampled 4x4'"
-            if [ $x = 3 ]; then
-                echo "set xlabel 'footprint: major semi-axis |d0| (checks)'; set title 'Checkerboard: error against footprint size (all anisotropies)'"
-            else
-                echo "set xlabel 'anisotropy |d0| / |d1|'; set title 'Checkerboard: error against anisotropy (all sizes)'"
-            fi
-            echo "plot '$TMP/c-none-0-$x.dat' with linespoints pt 9 lw 1.5 title 'aamode none', \
-'$TMP/c-closedform-0-$x.dat' with linespoints pt 11 lw 1.5 title 'aamode closedform', \
-'$TMP/c-supersampled-4-$x.dat' with linespoints pt 5 lw 1.5 dt 2 title 'supersampled 4x4', \
-'$TMP/c-supersampled-16-$x.dat' with linespoints pt 4 lw 1.5 dt 2 title 'supersampled 16x16'"
-            echo "unset multiplot"
-        } > "$TMP/$x.gp"
-    done
-    for g in time 3 4; do
-        "$GNUPLOT" "$TMP/$g.gp" || { echo "3-filtering: gnuplot failed on $g" >&2; exit 1; }
-    done
-    PLOTS="3-filtering-time.png 3-filtering-aniso.png 3-filtering-size.png"
-fi
+} > "$SE.tmp" && mv "$SE.tmp" "$SE"
+
+# gnuplot selections: pick TEX MODE [PARAM] is true on the rows of one
+# texture and mode (and parameter)
+pick() {
+    if [ $# = 3 ]; then echo "strcol(1) eq '$1' && strcol(2) eq '$2' && column(3) == $3"
+    else echo "strcol(1) eq '$1' && strcol(2) eq '$2'"; fi
+}
+HEAD="set grid; set logscale xy; set format y '10^{%L}'; set format x '%g'; set key below horizontal maxcols 2 width -4; set bmargin 9
+set multiplot layout 1,2"
+TERM="size 1100,560 enhanced font 'DejaVu Sans,10'"
+
+# error against time: one point per mode, EWA and supersampling as lines
+# (EWA labelled with maxanisotropy, the checkerboard's supersampling with
+# its number of lookups)
+cmds="$HEAD
+set xlabel 'time per lookup (ns, one thread)'; set ylabel 'RMS error (texture values span [0, 1])'
+set title 'Image map (512^2): error against cost, whole sweep'
+plot '3-filtering-overall.csv' using ($(pick imagemap ewa) ? column(6) : NaN):(column(4)) with linespoints pt 7 lw 1.5 title 'EWA, maxanisotropy 1..64', \\
+     '' using ($(pick imagemap ewa) ? column(6) : NaN):(column(4)):(sprintf('%d', column(3))) with labels offset 1.2,0.6 font ',8' notitle, \\
+     '' using ($(pick imagemap supersampled) ? column(6) : NaN):(column(4)) with linespoints pt 5 lw 1.5 dt 2 title 'supersampled, 4..64 bilinear lookups', \\
+     '' using ($(pick imagemap none) ? column(6) : NaN):(column(4)) with points pt 9 ps 1.6 title 'none (bilinear, level 0)', \\
+     '' using ($(pick imagemap trilinear) ? column(6) : NaN):(column(4)) with points pt 11 ps 1.6 title 'trilinear (pbrt-v2 width)', \\
+     '' using ($(pick imagemap trilinear-corrected) ? column(6) : NaN):(column(4)) with points pt 13 ps 1.6 title 'trilinear (corrected width)'
+set title 'Checkerboard: error against cost, whole sweep'
+plot '3-filtering-overall.csv' using ($(pick checker supersampled) ? column(6) : NaN):(column(4)) with linespoints pt 5 lw 1.5 dt 2 title 'supersampled, 4..256 lookups', \\
+     '' using ($(pick checker supersampled) ? column(6) : NaN):(column(4)):(sprintf('%d', column(3) * column(3))) with labels offset 1.2,0.6 font ',8' notitle, \\
+     '' using ($(pick checker none) ? column(6) : NaN):(column(4)) with points pt 9 ps 1.6 title 'aamode none', \\
+     '' using ($(pick checker closedform) ? column(6) : NaN):(column(4)) with points pt 11 ps 1.6 title 'aamode closedform'
+unset multiplot"
+PLOTMD=$(tr_plot 3-filtering-time "Texture filters: error against time per lookup" \
+    "3-filtering-overall.csv" "$cmds" "$TERM") || status=1
+
+# error against the footprint's size and against its anisotropy: the same
+# two panels, one plot per axis
+for axis in aniso size; do
+    # one curve: its selection, then its look and title
+    curve() { echo "'3-filtering-series.csv' using ($(pick "$1" "$2" "$3") && strcol(4) eq '$axis' ? column(5) : NaN):(column(6)) with linespoints $4"; }
+    if [ $axis = size ]; then
+        ixl="footprint: major semi-axis |d0| (texels)"; cxl="footprint: major semi-axis |d0| (checks)"
+        it="Image map: error against footprint size (all anisotropies)"
+        ct="Checkerboard: error against footprint size (all anisotropies)"
+        title="Texture filters: error against footprint size"
+    else
+        ixl="anisotropy |d0| / |d1|"; cxl=$ixl
+        it="Image map: error against anisotropy (all sizes)"
+        ct="Checkerboard: error against anisotropy (all sizes)"
+        title="Texture filters: error against anisotropy"
+    fi
+    cmds="$HEAD
+set ylabel 'RMS error (texture values span [0, 1])'
+set xlabel '$ixl'; set title '$it'
+plot $(curve imagemap none 0 "pt 9 lw 1.5 title 'none'"), \\
+     $(curve imagemap trilinear 0 "pt 11 lw 1.5 title 'trilinear (pbrt-v2 width)'"), \\
+     $(curve imagemap trilinear-corrected 0 "pt 13 lw 1.5 title 'trilinear (corrected width)'"), \\
+     $(curve imagemap ewa 8 "pt 7 lw 1.5 title 'EWA, maxanisotropy 8 (default)'"), \\
+     $(curve imagemap ewa 64 "pt 6 lw 1.5 title 'EWA, maxanisotropy 64'"), \\
+     $(curve imagemap supersampled 4 "pt 5 lw 1.5 dt 2 title 'supersampled 4x4'")
+set xlabel '$cxl'; set title '$ct'
+plot $(curve checker none 0 "pt 9 lw 1.5 title 'aamode none'"), \\
+     $(curve checker closedform 0 "pt 11 lw 1.5 title 'aamode closedform'"), \\
+     $(curve checker supersampled 4 "pt 5 lw 1.5 dt 2 title 'supersampled 4x4'"), \\
+     $(curve checker supersampled 16 "pt 4 lw 1.5 dt 2 title 'supersampled 16x16'")
+unset multiplot"
+    md=$(tr_plot "3-filtering-$axis" "$title" "3-filtering-series.csv" "$cmds" "$TERM") || status=1
+    PLOTMD="$PLOTMD
+
+$md"
+done
 
 MD=$OUT/3-filtering.md
 {
@@ -164,29 +171,21 @@ MD=$OUT/3-filtering.md
     echo "- Error: RMS of lookup - truth; time: ns per lookup on one thread (CPU time, median of 3 runs"
     echo "  of 8 passes)."
     echo
-    if [ -n "$PLOTS" ]; then
-        for p in $PLOTS; do echo "![$p]($p)"; echo; done
-    else
-        echo "gnuplot was not found: the data are in \`3-filtering-imagemap.csv\` and"
-        echo "\`3-filtering-checker.csv\` (mode, parameter, size, anisotropy, RMS error, RMS error"
-        echo "against the wide box, ns per lookup); plot error (column 5) against ns per lookup (7),"
-        echo "size (3) or anisotropy (4) on log-log axes, one series per mode and parameter."
-        echo
-    fi
+    printf '%s\n\n' "$PLOTMD"
     echo "Over the whole sweep (RMS of the groups' errors, mean time per lookup):"
     echo
     echo "| texture | mode | parameter | RMS error (cell) | RMS error (wide) | ns per lookup |"
     echo "| --- | --- | --- | --- | --- | --- |"
-    awk -F, '{ printf "| image map | %s | %s | %s | %s | %s |\n", $1, ($1 == "ewa" ? "maxanisotropy " $2 : ($1 == "supersampled" ? $2 "x" $2 : "-")), $3, $4, $5 }' "$TMP/i-overall.csv"
-    awk -F, '{ printf "| checkerboard | %s | %s | %s | %s | %s |\n", $1, ($1 == "supersampled" ? $2 "x" $2 : "-"), $3, $4, $5 }' "$TMP/c-overall.csv"
+    awk -F, 'NR > 1 { printf "| %s | %s | %s | %s | %s | %s |\n", ($1 == "imagemap" ? "image map" : "checkerboard"), $2,
+                      ($2 == "ewa" ? "maxanisotropy " $3 : ($2 == "supersampled" ? $3 "x" $3 : "-")), $4, $5, $6 }' "$OV"
     echo
     # conclusions from the data: the cheapest supersampling that beats EWA 8
     # and closedform, and the relative costs
-    awk -F, -v file=i 'FILENAME ~ /i-overall/ { if ($1 == "ewa" && $2 == 8) { ee = $3; te = $5 } if ($1 == "none") { en = $3; tn = $5 }
-                               if ($1 == "trilinear") { et = $3; tt = $5 } if ($1 == "ewa" && $2 == 64) { e64 = $3; t64 = $5 }
-                               if ($1 == "supersampled") { se[++ns] = $3; st[ns] = $5; sp[ns] = $2 } }
-        FILENAME ~ /c-overall/ { if ($1 == "closedform") { ec = $3; tc = $5 } if ($1 == "none") { ecn = $3; tcn = $5 }
-                               if ($1 == "supersampled") { cse[++ncs] = $3; cst[ncs] = $5; csp[ncs] = $2 } }
+    awk -F, '$1 == "imagemap" { if ($2 == "ewa" && $3 == 8) { ee = $4; te = $6 } if ($2 == "none") { en = $4; tn = $6 }
+                               if ($2 == "trilinear") { et = $4; tt = $6 } if ($2 == "ewa" && $3 == 64) { e64 = $4; t64 = $6 }
+                               if ($2 == "supersampled") { se[++ns] = $4; st[ns] = $6; sp[ns] = $3 } }
+        $1 == "checker" { if ($2 == "closedform") { ec = $4; tc = $6 } if ($2 == "none") { ecn = $4; tcn = $6 }
+                               if ($2 == "supersampled") { cse[++ncs] = $4; cst[ncs] = $6; csp[ncs] = $3 } }
         END {
             printf "Image map: EWA at the default maxanisotropy 8 has %.2g of the error of no filtering (%.3g against %.3g) at %.1fx its cost; ", ee / en, ee, en, te / tn
             printf "trilinear %.3g at %.1fx; maxanisotropy 64 gives %.3g at %.1fx. ", et, tt / tn, e64, t64 / tn
@@ -197,8 +196,9 @@ MD=$OUT/3-filtering.md
             b = 0; for (i = 1; i <= ncs; i++) if (!b && cse[i] <= ec) b = i
             if (b) printf "supersampling needs %dx%d lookups (%.0f ns, %.0fx closedform'\''s time) to match it.\n", csp[b], csp[b], cst[b], cst[b] / tc
             else printf "no supersampling rate measured matches it.\n"
-        }' "$TMP/i-overall.csv" "$TMP/c-overall.csv"
+        }' "$OV"
     echo
     echo "Measured by \`$(if [ "$QUICK" = 1 ]; then echo "make tradeoff QUICK=1"; else echo "make tradeoff"; fi)\` (\`tradeoff/3-filtering.sh\`) in ${ELAPSED} s of wall time."
 } > "$MD.tmp" && mv "$MD.tmp" "$MD"
-echo "3-filtering: wrote $I, $C, $MD" >&2
+echo "3-filtering: wrote $I, $C, $OV, $SE, $MD" >&2
+exit $status

@@ -2,9 +2,12 @@
 # Measurement 4: measured BRDFs. $MT_TRADEOFF/measured (tradeoff/measured.c)
 # measures the error and the time per call of the irregular (.brdf, k-d
 # search) and half-angle (MERL) forms of a BRDF, and of MERL tables at
-# coarser resolutions; this script plots them and writes the report section
-# $OUT/4-measured.md. Environment: MT_TRADEOFF, OUT, QUICK, SHARED, GNUPLOT,
-# TRADEOFF_DIR (tools/run-tradeoff.sh).
+# coarser resolutions ($OUT/4-measured-analytic.csv, and with ../shared
+# 4-measured-files.csv for its real files); this script plots them
+# (4-measured-size, -time: .gp, and .png with gnuplot) and writes the report
+# section $OUT/4-measured.md. Environment: MT_TRADEOFF, OUT, QUICK, SHARED,
+# GNUPLOT, TRADEOFF_DIR (tools/run-tradeoff.sh); MEASURED_REPORT_ONLY=1
+# rewrites the plots and section from an earlier run's CSV files.
 set -u
 : "${MT_TRADEOFF:?}" "${OUT:?}"
 QUICK=${QUICK:-0}
@@ -16,74 +19,76 @@ PROG=$MT_TRADEOFF/measured
 mkdir -p "$OUT"
 
 START=$(date +%s)
-set -- --out "$OUT"
-[ "$QUICK" = 1 ] && set -- "$@" --quick
-BRDFS=
-if [ -n "$SHARED" ] && [ -d "$SHARED/reference/scenes/brdfs" ]; then
-    BRDFS=$SHARED/reference/scenes/brdfs
-    set -- "$@" --brdfs "$BRDFS"
-fi
-rm -f "$OUT/4-measured-files.csv"
-"$PROG" "$@" || { echo "4-measured: $PROG failed" >&2; exit 1; }
-ELAPSED=$(($(date +%s) - START))
 A=$OUT/4-measured-analytic.csv
 F=$OUT/4-measured-files.csv
-
-PLOTS=
-if [ -n "$GNUPLOT" ]; then
-    TMP=$(mktemp -d "${TMPDIR:-/tmp}/mt-measured.XXXXXX") || exit 1
-    trap 'rm -rf "$TMP"' EXIT INT TERM
-    # one data file per material and form: param bytes ns error
-    awk -F, -v d="$TMP" 'NR > 1 && $2 != "analytic" {
-        m = $1; sub(/.* /, "", m); f = d "/" $2 "-" m ".dat"
-        print $3, $4, $5, $6 > f }' "$A"
-    mats=$(awk -F, 'NR > 1 && $2 == "analytic" { m = $1; sub(/.* /, "", m); print m }' "$A")
-    style() {
-        if [ -f "$TRADEOFF_DIR/style.gp" ]; then echo "load '$TRADEOFF_DIR/style.gp'"; fi
-        echo "set terminal pngcairo size 800,520 enhanced font 'DejaVu Sans,10'"
-        # the data files here are whitespace-separated (the shared style reads CSV)
-        echo "set datafile separator whitespace"
-        echo "set logscale xy; set grid; set key bottom left box opaque"
-        echo "set ylabel 'relative RMS error of f'"
-    }
-    # error against data size, and against time per call
-    for what in size time; do
-        {
-            style
-            echo "set output '$OUT/4-measured-$what.png'"
-            if [ $what = size ]; then
-                echo "set title 'Measured BRDF forms of a plastic: error against data size'"
-                echo "set xlabel 'data size (bytes)'; set format x '10^{%L}'"
-                col=2
-            else
-                echo "set title 'Measured BRDF forms of a plastic: error against time per f call'"
-                echo "set xlabel 'time per f call (ns, one thread)'; set format x '%g'; set xrange [20:20000]"
-                col=3
-            fi
-            p="plot"; sep=""; pt=5
-            for m in $mats; do
-                p="$p$sep '$TMP/irregular-$m.dat' using $col:4 with linespoints pt $pt lw 1.5 title 'irregular, N samples, roughness $m'"
-                p="$p, '' using $col:4:(sprintf('N=%dk', \$1 / 1000)) with labels offset 0,0.8 font ',8' notitle"
-                sep=","
-                if [ $what = size ]; then
-                    p="$p, '$TMP/merl-$m.dat' using $col:4 with linespoints pt $((pt + 2)) lw 1.5 dt 2 title 'MERL table, 90/k bins, roughness $m'"
-                else
-                    # a coarse table costs what the full one costs: only the full one
-                    p="$p, '$TMP/merl-$m.dat' every ::0::0 using $col:4 with points pt $((pt + 2)) ps 1.8 title 'MERL table (90 bins), roughness $m'"
-                fi
-                pt=$((pt + 4))
-            done
-            if [ $what = time ]; then
-                ta=$(awk -F, 'NR > 1 && $2 == "analytic" { s += $5; n++ } END { printf "%.1f", s / n }' "$A")
-                echo "set arrow from $ta, graph 0 to $ta, graph 1 nohead dt 3 lc rgb 'gray40'"
-                echo "set label 'analytic plastic' at $ta, graph 0.95 offset 0.5,0 tc rgb 'gray40'"
-            fi
-            echo "$p"
-        } > "$TMP/$what.gp"
-        "$GNUPLOT" "$TMP/$what.gp" || { echo "4-measured: gnuplot failed" >&2; exit 1; }
-        PLOTS="$PLOTS 4-measured-$what.png"
-    done
+if [ "${MEASURED_REPORT_ONLY:-0}" = 1 ] && [ -s "$A" ]; then
+    # MEASURED_REPORT_ONLY=1: the plots and section again from an earlier
+    # run's CSV files (its duration is kept beside them)
+    ELAPSED=$(cat "$OUT/4-measured.seconds" 2>/dev/null || echo "?")
+else
+    set -- --out "$OUT"
+    [ "$QUICK" = 1 ] && set -- "$@" --quick
+    if [ -n "$SHARED" ] && [ -d "$SHARED/reference/scenes/brdfs" ]; then
+        set -- "$@" --brdfs "$SHARED/reference/scenes/brdfs"
+    fi
+    rm -f "$F"
+    "$PROG" "$@" || { echo "4-measured: $PROG failed" >&2; exit 1; }
+    ELAPSED=$(($(date +%s) - START))
+    echo "$ELAPSED" > "$OUT/4-measured.seconds"
 fi
+. "$TRADEOFF_DIR/lib.sh"
+status=0
+
+# Error against data size and against time per call, one series per form and
+# material, selected from 4-measured-analytic.csv in gnuplot (columns: 3 N or
+# bins, 4 bytes, 5 ns per call, 6 relative RMS error).
+mats=$(awk -F, 'NR > 1 && $2 == "analytic" { print $1 }' "$A")
+PLOTMD=
+for what in size time; do
+    if [ $what = size ]; then
+        head="set title 'Measured BRDF forms of a plastic: error against data size'
+set xlabel 'data size (bytes)'; set format x '10^{%L}'"
+        col=4
+    else
+        ta=$(awk -F, 'NR > 1 && $2 == "analytic" { s += $5; n++ } END { printf "%.1f", s / n }' "$A")
+        head="set title 'Measured BRDF forms of a plastic: error against time per f call'
+set xlabel 'time per f call (ns, one thread)'; set format x '%g'; set xrange [20:20000]
+set arrow from $ta, graph 0 to $ta, graph 1 nohead dt 3 lc rgb 'gray40'
+set label 'analytic plastic' at $ta, graph 0.95 offset 0.5,0 tc rgb 'gray40'"
+        col=5
+    fi
+    p="plot"; sep=""; pt=5
+    IFS_SAVE=$IFS
+    IFS='
+'
+    for m in $mats; do
+        r=${m##* } # the roughness, the name's last word
+        sel="strcol(1) eq '$m' && strcol(2) eq"
+        p="$p$sep '4-measured-analytic.csv' using ($sel 'irregular' ? column($col) : NaN):(column(6)) with linespoints pt $pt lw 1.5 title 'irregular, N samples, roughness $r', \\
+     '' using ($sel 'irregular' ? column($col) : NaN):(column(6)):(sprintf('N=%dk', column(3) / 1000)) with labels offset 0,0.8 font ',8' notitle"
+        sep=", \\
+    "
+        if [ $what = size ]; then
+            p="$p, \\
+     '' using ($sel 'merl' ? column($col) : NaN):(column(6)) with linespoints pt $((pt + 2)) lw 1.5 dt 2 title 'MERL table, 90/k bins, roughness $r'"
+        else
+            # a coarse table costs what the full one costs: only the full one
+            p="$p, \\
+     '' using ($sel 'merl' && column(3) == 90 ? column($col) : NaN):(column(6)) with points pt $((pt + 2)) ps 1.8 title 'MERL table (90 bins), roughness $r'"
+        fi
+        pt=$((pt + 4))
+    done
+    IFS=$IFS_SAVE
+    cmds="set logscale xy; set grid; set key bottom left box opaque
+set ylabel 'relative RMS error of f'
+$head
+$p"
+    md=$(tr_plot "4-measured-$what" "Measured BRDF forms: error against $( [ $what = size ] && echo "data size" || echo "time per call")" \
+        "4-measured-analytic.csv" "$cmds" "size 800,520 enhanced font 'DejaVu Sans,10'") || status=1
+    PLOTMD="$PLOTMD$md
+
+"
+done
 
 MD=$OUT/4-measured.md
 {
@@ -106,14 +111,7 @@ MD=$OUT/4-measured.md
     echo "averaged over k x k x k blocks of bins (90/k bins along theta_h; pbrt-v2 reads only the"
     echo "full resolution, so a coarse table is held at it: the same time per call, k^3 less data)."
     echo
-    if [ -n "$PLOTS" ]; then
-        for p in $PLOTS; do echo "![$p]($p)"; echo; done
-    else
-        echo "gnuplot was not found: the data are in \`4-measured-analytic.csv\` (material, form,"
-        echo "N or bins, bytes, ns per call, error) and \`4-measured-files.csv\`; plot error (column 6)"
-        echo "against bytes (4) or ns per call (5) on log-log axes, one series per form and material."
-        echo
-    fi
+    printf '%s' "$PLOTMD"
     echo "| material | form | N or bins | data (bytes) | ns per call | relative RMS error | median relative error |"
     echo "| --- | --- | --- | --- | --- | --- | --- |"
     awk -F, 'NR > 1 { printf "| %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, ($2 == "analytic" ? "-" : $3), ($2 == "analytic" ? "-" : $4), $5, ($2 == "analytic" ? "0 (truth)" : $6), ($2 == "analytic" ? "0" : $7) }' "$A"
@@ -144,3 +142,4 @@ MD=$OUT/4-measured.md
     echo "Measured by \`$(if [ "$QUICK" = 1 ]; then echo "make tradeoff QUICK=1"; else echo "make tradeoff"; fi)\` (\`tradeoff/4-measured.sh\`) in ${ELAPSED} s of wall time."
 } > "$MD.tmp" && mv "$MD.tmp" "$MD"
 echo "4-measured: wrote $A, $MD" >&2
+exit $status
