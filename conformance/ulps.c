@@ -11,21 +11,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "conformance.h"
+#include "queries.h"
 
 #define NQ 256
-
-/* Float-representable inputs, identical in both builds. */
-static mt_real as_float(double x)
-{
-    volatile float f = (float)x;
-    return f;
-}
-
-static mt_vec3 query_dir(mt_rng *r)
-{
-    double z = 1 - 2 * mt_rng_uniform_d(r), phi = 6.283185307179586 * mt_rng_uniform_d(r), s = sqrt(1 - z * z);
-    return mt_v3(as_float(s * cos(phi)), as_float(s * sin(phi)), as_float(z));
-}
 
 /* The answers of one configuration: 8 numbers per query. */
 static int answers(const cf_subject *s, mt_mode mode, int si, double *out)
@@ -43,17 +31,13 @@ static int answers(const cf_subject *s, mt_mode mode, int si, double *out)
     }
     mt_rng_seed(&rng, 4242, (uint64_t)si);
     for (i = 0; i < NQ; ++i) {
-        mt_vec3 wo = query_dir(&rng), wi = query_dir(&rng);
-        mt_rgb f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
-        /* one variable each: the order of evaluation of function arguments is
-         * unspecified (gcc and clang differ), the queries must not be */
-        mt_real uc = as_float(mt_rng_uniform_d(&rng)), u1 = as_float(mt_rng_uniform_d(&rng)),
-                u2 = as_float(mt_rng_uniform_d(&rng));
-        mt_bsdf_sample sm = mt_bsdf_sample_f(b, wo, uc, u1, u2, MT_BSDF_ALL);
+        cf_query q = cf_query_next(&rng);
+        mt_rgb f = mt_bsdf_f(b, q.wo, q.wi, MT_BSDF_ALL);
+        mt_bsdf_sample sm = mt_bsdf_sample_f(b, q.wo, q.uc, q.u1, q.u2, MT_BSDF_ALL);
         out[n++] = f.c[0];
         out[n++] = f.c[1];
         out[n++] = f.c[2];
-        out[n++] = mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL);
+        out[n++] = mt_bsdf_pdf(b, q.wo, q.wi, MT_BSDF_ALL);
         out[n++] = sm.wi.x;
         out[n++] = sm.wi.z;
         out[n++] = sm.f.c[1];
@@ -84,19 +68,6 @@ int cf_dump(const char *path)
         }
     free(v);
     return fclose(fp) != 0;
-}
-
-/* |a - b| in units of the float spacing at max(|a|, |b|, floor): values far
- * below the configuration's scale (a Fresnel reflectance of 1e-13 at index
- * 1 + 1e-6) are compared at the floor, where their rounding is harmless. */
-static double float_ulps(double a, double b, double floor)
-{
-    double m = fmax(fmax(fabs(a), fabs(b)), floor), spacing;
-    int e;
-    if (m < 1e-30) return 0;
-    frexp(m, &e);
-    spacing = ldexp(1.0, e - 24);
-    return fabs(a - b) / spacing;
 }
 
 static int cmp_double(const void *x, const void *y)
@@ -139,7 +110,10 @@ void cf_ulps(const char *other, cf_rows *rows)
         if (m != n) goto fail;
         for (k = 0; k < n; ++k) scale = fmax(scale, fabs(theirs[k]) < 1e30 ? fabs(theirs[k]) : 0);
         for (k = 0; k < n; ++k) {
-            d[k] = float_ulps(mine[k], theirs[k], 1e-7 * scale);
+            /* values far below the configuration's scale (a Fresnel
+             * reflectance of 1e-13 at index 1 + 1e-6) are compared at 1e-7
+             * of it */
+            d[k] = cf_ulp_distance(mine[k], theirs[k], 1e-7 * scale, 24);
             worst = fmax(worst, d[k]);
         }
         qsort(d, (size_t)n, sizeof *d, cmp_double);

@@ -23,76 +23,45 @@
 #include <stdlib.h>
 #include <string.h>
 #include "../conformance/impl.h"
+#include "../conformance/queries.h"
 #include "support/timing.h"
 
 #define NV 8 /* f rgb, pdf, sampled wi xyz, sample pdf */
 #define REPS 5
 
-static mt_real as_float(double x)
-{
-    volatile float f = (float)x;
-    return f;
-}
-
-static mt_vec3 query_dir(mt_rng *r)
-{
-    double z = 1 - 2 * mt_rng_uniform_d(r), phi = 6.283185307179586 * mt_rng_uniform_d(r), s = sqrt(1 - z * z);
-    return mt_v3(as_float(s * cos(phi)), as_float(s * sin(phi)), as_float(z));
-}
-
-typedef struct queries {
-    int n;
-    mt_vec3 *wo, *wi;
-    mt_real (*u)[3];
-} queries;
-
-static int make_queries(queries *q, int n, int ci)
+/* The n queries of configuration ci (the same in both builds); NULL when out
+ * of memory. */
+static cf_query *make_queries(int n, int ci)
 {
     mt_rng rng;
+    cf_query *q = malloc(sizeof *q * (size_t)n);
     int i;
-    q->n = n;
-    q->wo = malloc(sizeof *q->wo * (size_t)n);
-    q->wi = malloc(sizeof *q->wi * (size_t)n);
-    q->u = malloc(sizeof *q->u * (size_t)n);
-    if (!q->wo || !q->wi || !q->u) return -1;
+    if (!q) return NULL;
     mt_rng_seed(&rng, 1212, (uint64_t)ci);
-    for (i = 0; i < n; ++i) {
-        q->wo[i] = query_dir(&rng);
-        q->wi[i] = query_dir(&rng);
-        q->u[i][0] = as_float(mt_rng_uniform_d(&rng));
-        q->u[i][1] = as_float(mt_rng_uniform_d(&rng));
-        q->u[i][2] = as_float(mt_rng_uniform_d(&rng));
-    }
-    return 0;
-}
-
-static void free_queries(queries *q)
-{
-    free(q->wo);
-    free(q->wi);
-    free(q->u);
+    for (i = 0; i < n; ++i) q[i] = cf_query_next(&rng);
+    return q;
 }
 
 static volatile double sink;
 
-/* ns per call of op (0 f, 1 pdf, 2 sample_f) over the queries */
-static double time_op(const mt_bsdf *b, const queries *q, int op)
+/* ns per call of op (0 f, 1 pdf, 2 sample_f) over the n queries q */
+static double time_op(const mt_bsdf *b, const cf_query *q, int n, int op)
 {
     double t[REPS];
-    int r, i, l, loops = 1 + 20000 / q->n;
+    int r, i, l, loops = 1 + 20000 / n;
     for (r = 0; r < REPS; ++r) {
         double s = 0, t0 = t_cpu_now();
         for (l = 0; l < loops; ++l)
-            for (i = 0; i < q->n; ++i) {
+            for (i = 0; i < n; ++i) {
                 if (op == 0)
-                    s += mt_bsdf_f(b, q->wo[i], q->wi[i], MT_BSDF_ALL).c[1];
+                    s += mt_bsdf_f(b, q[i].wo, q[i].wi, MT_BSDF_ALL).c[1];
                 else if (op == 1)
-                    s += mt_bsdf_pdf(b, q->wo[i], q->wi[i], MT_BSDF_ALL);
+                    s += mt_bsdf_pdf(b, q[i].wo, q[i].wi, MT_BSDF_ALL);
                 else
-                    s += mt_bsdf_sample_f(b, q->wo[i], q->u[i][0], q->u[i][1], q->u[i][2], MT_BSDF_ALL).pdf;
+                    s += mt_bsdf_sample_f(b, q[i].wo, q[i].uc, q[i].u1, q[i].u2, MT_BSDF_ALL).pdf;
             }
         sink = s;
-        t[r] = (t_cpu_now() - t0) * 1e9 / ((double)loops * q->n);
+        t[r] = (t_cpu_now() - t0) * 1e9 / ((double)loops * n);
     }
     return t_median(t, REPS);
 }
@@ -134,21 +103,25 @@ static int answers(const char *dir, int nq)
         const char *lines[CI_MAX_LINES];
         int nl = config_lines(&cs[ci], dir, buf, lines);
         cf_impl im;
-        queries q;
-        if (nl < 0 || cf_impl_open(&im, NULL, 0, MT_MODE_PBRT_V2, lines, nl) || make_queries(&q, nq, ci)) {
+        cf_query *q = NULL;
+        if (nl < 0 || cf_impl_open(&im, NULL, 0, MT_MODE_PBRT_V2, lines, nl)) {
             fprintf(stderr, "precision: %s: %s\n", cs[ci].name, nl < 0 ? "line too long" : im.msg);
             return 1;
         }
+        if (!(q = make_queries(nq, ci))) {
+            fprintf(stderr, "precision: out of memory\n");
+            return 1;
+        }
         for (i = 0; i < nq; ++i) {
-            mt_rgb f = mt_bsdf_f(im.bsdf, q.wo[i], q.wi[i], MT_BSDF_ALL);
-            mt_real pdf = mt_bsdf_pdf(im.bsdf, q.wo[i], q.wi[i], MT_BSDF_ALL);
-            mt_bsdf_sample s = mt_bsdf_sample_f(im.bsdf, q.wo[i], q.u[i][0], q.u[i][1], q.u[i][2], MT_BSDF_ALL);
+            mt_rgb f = mt_bsdf_f(im.bsdf, q[i].wo, q[i].wi, MT_BSDF_ALL);
+            mt_real pdf = mt_bsdf_pdf(im.bsdf, q[i].wo, q[i].wi, MT_BSDF_ALL);
+            mt_bsdf_sample s = mt_bsdf_sample_f(im.bsdf, q[i].wo, q[i].uc, q[i].u1, q[i].u2, MT_BSDF_ALL);
             printf("%d %a %a %a %a %a %a %a %a\n", ci, (double)f.c[0], (double)f.c[1], (double)f.c[2], (double)pdf,
                    (double)s.wi.x, (double)s.wi.y, (double)s.wi.z, (double)s.pdf);
         }
-        printf("time %d %.5g %.5g %.5g\n", ci, time_op(im.bsdf, &q, 0), time_op(im.bsdf, &q, 1),
-               time_op(im.bsdf, &q, 2));
-        free_queries(&q);
+        printf("time %d %.5g %.5g %.5g\n", ci, time_op(im.bsdf, q, nq, 0), time_op(im.bsdf, q, nq, 1),
+               time_op(im.bsdf, q, nq, 2));
+        free(q);
         cf_impl_close(&im);
     }
     return 0;
@@ -190,17 +163,6 @@ bad:
     fprintf(stderr, "precision: %s: malformed at configuration %d\n", path, ci);
     fclose(fp);
     return -1;
-}
-
-/* |a - b| in units of the spacing (2^-(bits-1) relative) at max(|a|, |b|, floor) */
-static double ulps(double a, double b, double floor, int bits)
-{
-    double m = fmax(fmax(fabs(a), fabs(b)), floor);
-    int e;
-    if (a == b) return 0;
-    if (!(m > 1e-300)) return 0;
-    frexp(m, &e);
-    return fabs(a - b) / ldexp(1.0, e - bits);
 }
 
 static int cmp_double(const void *x, const void *y)
@@ -271,24 +233,24 @@ static int compare(const char *fpath, const char *dpath)
         for (i = 0; i < n; ++i) {
             const double *a = fv + i * NV, *b = dv + i * NV;
             for (k = 0; k < 3; ++k) {
-                ef[3 * i + k] = ulps(a[k], b[k], 1e-7 * sf, 24);
-                ew[3 * i + k] = ulps(a[4 + k], b[4 + k], 1e-7, 24);
+                ef[3 * i + k] = cf_ulp_distance(a[k], b[k], 1e-7 * sf, 24);
+                ew[3 * i + k] = cf_ulp_distance(a[4 + k], b[4 + k], 1e-7, 24);
             }
-            ep[2 * i] = ulps(a[3], b[3], 1e-7 * sp, 24);
-            ep[2 * i + 1] = ulps(a[7], b[7], 1e-7 * sp, 24);
+            ep[2 * i] = cf_ulp_distance(a[3], b[3], 1e-7 * sp, 24);
+            ep[2 * i + 1] = cf_ulp_distance(a[7], b[7], 1e-7 * sp, 24);
         }
         if (lambert_kd(cs[ci].name, kd)) {
             /* the queries again, as the answers file made them */
-            queries q;
-            if (make_queries(&q, n, ci)) return 1;
+            cf_query *q = make_queries(n, ci);
+            if (!q) return 1;
             for (i = 0; i < n; ++i) {
-                long double wo = q.wo[i].z, wi = q.wi[i].z, pi = 3.14159265358979323846264338327950288L;
+                long double wo = q[i].wo.z, wi = q[i].wi.z, pi = 3.14159265358979323846264338327950288L;
                 long double pdf = wo * wi > 0 ? fabsl(wi) / pi : 0;
                 for (k = 0; k < 3; ++k)
-                    ed[nd++] = ulps(dv[i * NV + k], (double)(wo * wi > 0 ? kd[k] / pi : 0), 1e-7 * sf, 53);
-                ed[nd++] = ulps(dv[i * NV + 3], (double)pdf, 1e-7 * sp, 53);
+                    ed[nd++] = cf_ulp_distance(dv[i * NV + k], (double)(wo * wi > 0 ? kd[k] / pi : 0), 1e-7 * sf, 53);
+                ed[nd++] = cf_ulp_distance(dv[i * NV + 3], (double)pdf, 1e-7 * sp, 53);
             }
-            free_queries(&q);
+            free(q);
             ldmax = pct(ed, nd, 1);
         }
         /* the 99th percentile over every value of the configuration */
