@@ -10,7 +10,7 @@
 # $OUT/2-spp-reference.csv (the references: their time and how their
 # variance images compare with their measured variance), the fitted slopes and
 # times-to-error in $OUT/2-spp-summary.csv, $OUT/2-spp-relerr.csv, the plots
-# $OUT/2-spp-rmse.png, 2-spp-time.png, 2-spp-relerr.png (with their .gp
+# $OUT/2-spp-rmse.png, 2-spp-time.png, 2-spp-cpu.png, 2-spp-relerr.png (with their .gp
 # files) and the report section $OUT/2-spp.md.
 #
 # Environment (tools/run-tradeoff.sh sets the first ones): MT_BIN,
@@ -192,6 +192,8 @@ if [ "${SPP_REPORT_ONLY:-0}" = 1 ] && [ -s "$CSV" ] && [ -s "$REFCSV" ]; then
     # run (with the same sweep settings); its duration is kept beside it.
     ELAPSED=$(cat "$OUT/2-spp.seconds" 2>/dev/null || echo "?")
 else
+    LOADAVG() { cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown; }
+    LOAD0=$(LOADAVG)
     printf 'scene,renderer,spp,wall_s,cpu_s,rmse,relmse,rel_p50,rel_p90,rel_p99,noise_mean,rmse_raw,ref_share\n' > "$CSV.tmp"
     printf 'scene,ref_spp_each,wall_s_both,variance_measured,variance_claimed,claimed_over_measured\n' > "$REFCSV.tmp"
     for s in $SCENES $DIPOLE; do
@@ -213,6 +215,7 @@ else
     mv "$REFCSV.tmp" "$REFCSV"
     ELAPSED=$(($(date +%s) - START))
     echo "$ELAPSED" > "$OUT/2-spp.seconds"
+    echo "$LOAD0 at the start, $(LOADAVG) at the end" > "$OUT/2-spp.load"
 fi
 # Rows grouped by scene (in the sweep's order), then renderer, then count:
 # each curve is one run of rows, as the plots and the summary read them.
@@ -300,11 +303,13 @@ series() {
     printf "'2-spp.csv' using (%s ? column(%s) : NaN):(column(6)) with linespoints %s title '%s'" "$sel" "$3" "$look" "$2"
 }
 PLOTMD=
-for what in rmse time; do
+for what in rmse time cpu; do
     if [ $what = rmse ]; then
         xl="samples per pixel"; title="RMSE against samples per pixel"; col=3
-    else
+    elif [ $what = time ]; then
         xl="wall time per image (s)"; title="RMSE against wall time ($THREADS threads each)"; col=4
+    else
+        xl="CPU time per image, user + sys (s)"; title="RMSE against CPU time ($THREADS threads each)"; col=5
     fi
     cmds="set logscale xy; set format y '10^{%L}'; set format x '%g'; set grid
 set key top right
@@ -328,7 +333,7 @@ unset multiplot"
 done
 cmds="set logscale xy; set format y '10^{%L}'; set format x '%g'; set grid; set key top right box opaque
 set xlabel 'samples per pixel'; set ylabel 'relative error |a - b| / (b + 0.01)'
-set title 'Relative error percentiles over pixels, geometric mean over the golden scenes'
+set title 'Relative error percentiles over pixels, geometric mean over the path-traced golden scenes'
 plot '2-spp-relerr.csv' using (strcol(1) eq 'materia' ? column(2) : NaN):(column(3)) with linespoints lc rgb '#1f77b4' pt 7 lw 1.5 title 'materia, median', \\
      '' using (strcol(1) eq 'materia' ? column(2) : NaN):(column(5)) with linespoints lc rgb '#1f77b4' pt 9 lw 1.5 title 'materia, 99th percentile'"
 if grep -q "^pbrt-v2," "$REL"; then
@@ -433,7 +438,7 @@ MD=$OUT/2-spp.md
             if (nm) printf ".\n"
         }' "$SUM"
     echo
-    echo "Measured by \`$(if [ "$QUICK" = 1 ]; then echo "make tradeoff QUICK=1"; else echo "make tradeoff"; fi)\` (\`tradeoff/2-spp.sh\`) in ${ELAPSED} s of wall time."
+    echo "Measured by \`$(if [ "$QUICK" = 1 ]; then echo "make tradeoff QUICK=1"; else echo "make tradeoff"; fi)\` (\`tradeoff/2-spp.sh\`) in ${ELAPSED} s of wall time$( [ -s "$OUT/2-spp.load" ] && echo "; load average (1, 5, 15 min) $(cat "$OUT/2-spp.load")")."
 } > "$MD.tmp" && mv "$MD.tmp" "$MD"
 echo "2-spp: wrote $CSV, $SUM, $MD" >&2
 exit $status
