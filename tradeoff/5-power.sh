@@ -10,14 +10,14 @@ grep -v '^#' "$OUT/5-power.out" >"$OUT/5-power.csv"
 alpha=$(awk '$2 == "alpha_per_test" { print $3 }' "$OUT/5-power.out")
 tests=$(awk '$2 == "tests" { print $3 }' "$OUT/5-power.out")
 rm -f "$OUT/5-power.out"
-pw() { awk -F, -v c="$1" -v n="$2" -v e="$3" '$1 == c && $2 == n && $3 + 0 == e + 0 { print $6 }' "$OUT/5-power.csv"; }
+pw() { awk -F, -v c="$1" -v n="$2" -v e="$3" '$1 == c && $2 == n && $3 + 0 == e + 0 { printf "%.2f\n", $6 }' "$OUT/5-power.csv"; }
 # the fewest samples that catch eps in at least 90% of the runs, with cells c
 least() {
     awk -F, -v c="$1" -v e="$2" 'NR > 1 && $1 == c && $3 + 0 == e + 0 && $6 >= 0.9 && (m == "" || $2 + 0 < m) { m = $2 + 0 }
         END { print (m == "" ? "more than any tried" : m) }' "$OUT/5-power.csv"
 }
-tsamp() { awk -F, -v n="$1" '$2 == n { print $7; exit }' "$OUT/5-power.csv"; }
-tcub() { awk -F, -v c="$1" '$1 == c { print $8; exit }' "$OUT/5-power.csv"; }
+tsamp() { tr_g3 "$(awk -F, -v n="$1" '$2 == n { print $7; exit }' "$OUT/5-power.csv")"; }
+tcub() { tr_g3 "$(awk -F, -v c="$1" '$1 == c { print $8; exit }' "$OUT/5-power.csv")"; }
 fp=$(awk -F, 'NR > 1 && $3 + 0 == 0 { d += $5; r += $4 } END { printf "%d of %d", d, r }' "$OUT/5-power.csv")
 
 # one wide table per cell count: samples, then the power for each eps

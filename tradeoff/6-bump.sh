@@ -21,13 +21,15 @@ at() { awk -F, -v h="$2" 'NR > 1 && $1 + 0 == h + 0 { print $'"$3"' }' "$1"; }
 set -- $(best "$OUT/6-bump-float.csv"); fstep=$1; ferr=$2
 set -- $(best "$OUT/6-bump-double.csv"); dstep=$1; derr=$2
 dmin=$(awk -F, 'NR == 2 { print $1 }' "$OUT/6-bump-double.csv")
-if [ "$dstep" = "$dmin" ]; then dbest="smaller than any tried: at $dstep the median error is $derr rad"
-else dbest="**$dstep** ($derr rad)"; fi
+fstep=$(tr_g3 "$fstep"); ferr=$(tr_g3 "$ferr"); derr=$(tr_g3 "$derr")
+if [ "$dstep" = "$dmin" ]; then dbest="smaller than any tried: at $(tr_g3 "$dstep") the median error is $derr rad"
+else dbest="**$(tr_g3 "$dstep")** ($derr rad)"; fi
 f01=$(at "$OUT/6-bump-float.csv" 0.01 2); d01=$(at "$OUT/6-bump-double.csv" 0.01 2)
 fmax01=$(at "$OUT/6-bump-float.csv" 0.01 3)
 drop01=$(at "$OUT/6-bump-double.csv" 0.01 4)
 dropbest=$(awk -F, 'NR > 1 && (b == "" || $4 < b) { b = $4 } END { print b }' "$OUT/6-bump-double.csv")
 f7=$(at "$OUT/6-bump-float.csv" 1e-07 2)
+for v in f01 d01 fmax01 drop01 dropbest f7; do eval "$v=\$(tr_g3 \"\$$v\")"; done
 
 plot=$(tr_plot 6-bump "Bump mapping: shading-normal error against the step" \
     "6-bump-float.csv, 6-bump-double.csv" "

@@ -41,6 +41,12 @@ tr_plot() {
     echo "\`cd $OUT && gnuplot $_tp_name.gp\`."
 }
 
+# tr_g3 VALUE: a number to three significant digits for the report's prose
+# (anything else as it is)
+tr_g3() {
+    awk -v x="$1" 'BEGIN { if (x ~ /^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$/) printf "%.3g\n", x; else print x }'
+}
+
 # tr_csv_value FILE COLUMN_NAME ROW_KEY_COLUMN ROW_KEY: one value of a CSV
 # with a header line (plain fields, no quoted commas)
 tr_csv_value() {
