@@ -131,21 +131,171 @@ static void usage(FILE *f, const char *argv0)
     fprintf(f,
             "usage: %s --impl 'COMMAND' [--mode pbrt-v2|corrected] [--only REGEX] [--data DIR]\n"
             "       [--timeout SECONDS] [--samples N] [--cells N] [--quick] [--threads N]\n"
+            "       [--report FILE] [--plots DIR [--plots-all]]\n"
             "Runs the material-level suite through COMMAND (run by sh -c), a program that speaks the\n"
             "query protocol of materia-query on its standard input and output.\n"
             "  --mode M       pbrt-v2 or corrected (the default)\n"
             "  --only REGEX   the configurations whose name matches (POSIX extended); none is an error\n"
             "  --data DIR     where the suite writes the files configurations name (default: a\n"
             "                 temporary directory); they reach COMMAND as absolute paths\n"
-            "  --timeout S    seconds allowed for each answer (default 10)\n"
-            "  --samples N    samples per incoming direction (default 40000; --quick 8000)\n"
-            "  --cells N      N x (N+1) chi-square cells (default 20; --quick 12)\n"
+            "  --timeout S    seconds allowed for each answer, > 0 and at most 1e6 (default 10)\n"
+            "  --samples N    samples per incoming direction, 100 to 1e8 (default 40000; --quick 8000)\n"
+            "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n"
             "  --quick        the reduced set of make check: fewer configurations, directions, samples\n"
-            "  --threads N    configurations run at once (default: the number of processors)\n"
+            "  --threads N    configurations run at once, 1 to 16 (default: the number of processors)\n"
             "  --report FILE  the whole result as JSON (schema in docs/CONFORMANCE-SUITE.md)\n"
             "  --plots DIR    a PNG for every chi-square that fails (with --plots-all: every one)\n"
+            "Each option is given once; a value may not begin with \"--\".\n"
             "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n",
             argv0);
+}
+
+/* The command line of --impl, read. */
+typedef struct opts {
+    const char *command, *mode, *only, *data, *report, *plots;
+    int quick, plots_all, cells, threads;
+    long samples;
+    double timeout;
+} opts;
+
+/* A whole number of [lo, hi] (no sign of overflow, nothing after it). */
+static int whole(const char *argv0, const char *opt, const char *v, long lo, long hi, long *out)
+{
+    char *e;
+    long x;
+    errno = 0;
+    x = strtol(v, &e, 10);
+    if (e == v || *e || errno || x < lo || x > hi) {
+        fprintf(stderr, "%s: %s: \"%s\" is not a whole number of %ld to %ld\n", argv0, opt, v, lo, hi);
+        return -1;
+    }
+    *out = x;
+    return 0;
+}
+
+/* Reads argv into o: 0 to run, 1 when --help or --version was answered
+ * (status 0), 2 on a usage error (the message names the option). Every
+ * option that takes a value must have one that is not itself an option:
+ * "--impl --help" asks for this help, not for the command "--help". */
+static int parse(int argc, char **argv, opts *o)
+{
+    static const char *const valued[] = {"--impl", "--mode", "--only", "--data", "--timeout", "--samples",
+                                         "--cells", "--threads", "--report", "--plots"};
+    const char *sv[sizeof valued / sizeof valued[0]] = {NULL}; /* their values, in that order */
+    size_t k, nv = sizeof valued / sizeof valued[0];
+    int i;
+    long x;
+    memset(o, 0, sizeof *o);
+    for (i = 1; i < argc; ++i)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            usage(stdout, argv[0]);
+            return 1;
+        } else if (!strcmp(argv[i], "--version")) {
+            printf("materia-conformance (materia) %s, %s\n", mt_version(), mt_precision());
+            return 1;
+        }
+    for (i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--quick") || !strcmp(a, "--plots-all")) {
+            int *flag = a[2] == 'q' ? &o->quick : &o->plots_all;
+            if (*flag) {
+                fprintf(stderr, "%s: %s is given twice\n", argv[0], a);
+                return 2;
+            }
+            *flag = 1;
+            continue;
+        }
+        for (k = 0; k < nv && strcmp(a, valued[k]); ++k) continue;
+        if (k == nv) {
+            fprintf(stderr, "%s: unknown argument \"%s\" (--impl --help lists the options)\n", argv[0], a);
+            return 2;
+        }
+        if (i + 1 >= argc || !strncmp(argv[i + 1], "--", 2)) {
+            fprintf(stderr, "%s: %s needs a value%s%s%s\n", argv[0], a, i + 1 < argc ? " (got the option \"" : "",
+                    i + 1 < argc ? argv[i + 1] : "", i + 1 < argc ? "\")" : "");
+            return 2;
+        }
+        if (sv[k]) {
+            fprintf(stderr, "%s: %s is given twice (\"%s\" and \"%s\")\n", argv[0], a, sv[k], argv[i + 1]);
+            return 2;
+        }
+        sv[k] = argv[++i];
+    }
+    o->command = sv[0];
+    o->mode = sv[1] ? sv[1] : "corrected";
+    o->only = sv[2];
+    o->data = sv[3];
+    o->report = sv[8];
+    o->plots = sv[9];
+    if (!o->command || !o->command[strspn(o->command, " \t\n")]) {
+        fprintf(stderr, "%s: --impl needs a command (the program to test, run by sh -c)\n", argv[0]);
+        return 2;
+    }
+    if (strcmp(o->mode, "pbrt-v2") && strcmp(o->mode, "corrected")) {
+        fprintf(stderr, "%s: --mode: \"%s\" is neither pbrt-v2 nor corrected\n", argv[0], o->mode);
+        return 2;
+    }
+    o->timeout = 10;
+    if (sv[4]) {
+        char *e;
+        o->timeout = strtod(sv[4], &e);
+        if (e == sv[4] || *e || !(o->timeout > 0) || !(o->timeout <= 1e6)) {
+            fprintf(stderr, "%s: --timeout: \"%s\" is not a number of seconds > 0 and <= 1e6\n", argv[0], sv[4]);
+            return 2;
+        }
+    }
+    if (sv[5] && whole(argv[0], "--samples", sv[5], 100, 100000000, &o->samples)) return 2;
+    if (sv[6]) {
+        if (whole(argv[0], "--cells", sv[6], 4, 200, &x)) return 2;
+        o->cells = (int)x;
+    }
+    if (sv[7]) {
+        if (whole(argv[0], "--threads", sv[7], 1, 16, &x)) return 2;
+        o->threads = (int)x;
+    }
+    if (o->plots_all && !o->plots) {
+        fprintf(stderr, "%s: --plots-all needs --plots DIR\n", argv[0]);
+        return 2;
+    }
+    return 0;
+}
+
+/* --report FILE must be writable before the run, not after it: FILE.tmp is
+ * created (and removed) where the report will be written. */
+static int report_writable(const char *argv0, const char *path)
+{
+    char tmp[4200];
+    struct stat st;
+    FILE *f;
+    if (!stat(path, &st) && S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "%s: --report: \"%s\" is a directory\n", argv0, path);
+        return -1;
+    }
+    snprintf(tmp, sizeof tmp, "%.4000s.tmp", path);
+    if (!(f = fopen(tmp, "w"))) {
+        fprintf(stderr, "%s: --report: cannot write \"%s\": %s\n", argv0, path, strerror(errno));
+        return -1;
+    }
+    fclose(f);
+    remove(tmp);
+    return 0;
+}
+
+/* --plots DIR and --data DIR: made when missing; an existing file that is
+ * not a directory is an error. */
+static int make_dir(const char *argv0, const char *opt, const char *dir)
+{
+    struct stat st;
+    const char *why;
+    if (!mkdir(dir, 0777)) return 0;
+    if (errno != EEXIST)
+        why = strerror(errno);
+    else if (!stat(dir, &st) && S_ISDIR(st.st_mode))
+        return 0;
+    else
+        why = "a file of that name exists";
+    fprintf(stderr, "%s: %s: cannot make the directory \"%s\": %s\n", argv0, opt, dir, why);
+    return -1;
 }
 
 static int rm_data(const char *dir)
@@ -254,123 +404,48 @@ static const char *verdict(const cfg_out *o, int k)
 int cf_impl_main(int argc, char **argv)
 {
     cf_impl_run run;
-    const char *only = NULL, *data = NULL, *mode_name = "corrected", *report = NULL;
-    int i, n, nsel = 0, quick = 0, threads, t, cells = 0, passed = 0, failed = 0, xfailed = 0, need_data = 0;
-    long samples = 0, nproc = sysconf(_SC_NPROCESSORS_ONLN);
+    opts op;
+    const char *data;
+    int i, n, nsel = 0, threads, t, passed = 0, failed = 0, xfailed = 0, need_data = 0;
+    long nproc = sysconf(_SC_NPROCESSORS_ONLN);
     const cf_impl_config *all = cf_impl_configs(&n);
     regex_t re;
     pool p;
     pthread_t th[16];
     char tmpdir[4096] = "", absdata[4096];
+    if ((i = parse(argc, argv, &op))) return i == 1 ? 0 : 2;
     memset(&run, 0, sizeof run);
-    run.timeout = 10;
-    threads = nproc > 0 ? (int)(nproc > 16 ? 16 : nproc) : 2;
-    for (i = 1; i < argc; ++i) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout, argv[0]);
-            return 0;
-        } else if (!strcmp(a, "--quick")) {
-            quick = 1;
-            continue;
-        } else if (!strcmp(a, "--plots-all")) {
-            run.plots_all = 1;
-            continue;
-        }
-        if (!v) {
-            fprintf(stderr, "%s: %s needs a value\n", argv[0], a);
-            usage(stderr, argv[0]);
-            return 2;
-        }
-        i++;
-        if (!strcmp(a, "--impl"))
-            run.command = v;
-        else if (!strcmp(a, "--mode"))
-            mode_name = v;
-        else if (!strcmp(a, "--only"))
-            only = v;
-        else if (!strcmp(a, "--data"))
-            data = v;
-        else if (!strcmp(a, "--report"))
-            report = v;
-        else if (!strcmp(a, "--plots"))
-            run.plots = v;
-        else if (!strcmp(a, "--timeout")) {
-            char *e;
-            run.timeout = strtod(v, &e);
-            if (*e || !(run.timeout > 0) || run.timeout > 1e6) {
-                fprintf(stderr, "%s: --timeout: \"%s\" is not a number of seconds > 0\n", argv[0], v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--samples")) {
-            char *e;
-            samples = strtol(v, &e, 10);
-            if (*e || samples < 100 || samples > 100000000) {
-                fprintf(stderr, "%s: --samples: \"%s\" is not an integer of 100..1e8\n", argv[0], v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--cells")) {
-            char *e;
-            cells = (int)strtol(v, &e, 10);
-            if (*e || cells < 4 || cells > 200) {
-                fprintf(stderr, "%s: --cells: \"%s\" is not an integer of 4..200\n", argv[0], v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--threads")) {
-            char *e;
-            threads = (int)strtol(v, &e, 10);
-            if (*e || threads < 1 || threads > 16) {
-                fprintf(stderr, "%s: --threads: \"%s\" is not an integer of 1..16\n", argv[0], v);
-                return 2;
-            }
-        } else {
-            fprintf(stderr, "%s: unknown argument \"%s\"\n", argv[0], a);
-            usage(stderr, argv[0]);
-            return 2;
-        }
-    }
-    if (!run.command || !*run.command) {
-        fprintf(stderr, "%s: --impl needs a command\n", argv[0]);
-        return 2;
-    }
-    if (!strcmp(mode_name, "pbrt-v2"))
-        run.mode = MT_MODE_PBRT_V2;
-    else if (!strcmp(mode_name, "corrected"))
-        run.mode = MT_MODE_CORRECTED;
-    else {
-        fprintf(stderr, "%s: --mode: \"%s\" is neither pbrt-v2 nor corrected\n", argv[0], mode_name);
-        return 2;
-    }
-    if (run.plots_all && !run.plots) {
-        fprintf(stderr, "%s: --plots-all needs --plots DIR\n", argv[0]);
-        return 2;
-    }
-    if (run.plots && mkdir(run.plots, 0777) && errno != EEXIST) {
-        fprintf(stderr, "%s: --plots: cannot make \"%s\": %s\n", argv[0], run.plots, strerror(errno));
-        return 2;
-    }
-    if (only && regcomp(&re, only, REG_EXTENDED | REG_NOSUB)) {
-        fprintf(stderr, "%s: --only: \"%s\" is not a regular expression\n", argv[0], only);
+    run.command = op.command;
+    run.timeout = op.timeout;
+    run.plots = op.plots;
+    run.plots_all = op.plots_all;
+    run.mode = !strcmp(op.mode, "pbrt-v2") ? MT_MODE_PBRT_V2 : MT_MODE_CORRECTED;
+    data = op.data;
+    threads = op.threads ? op.threads : nproc > 0 ? (int)(nproc > 16 ? 16 : nproc) : 2;
+    if (op.only && regcomp(&re, op.only, REG_EXTENDED | REG_NOSUB)) {
+        fprintf(stderr, "%s: --only: \"%s\" is not a regular expression\n", argv[0], op.only);
         return 2;
     }
     p.out = calloc((size_t)n, sizeof *p.out);
     if (!p.out) return 2;
     for (i = 0; i < n; ++i) {
-        if (only ? regexec(&re, all[i].name, 0, NULL, 0) != 0 : quick && !(all[i].flags & CI_QUICK)) continue;
+        if (op.only ? regexec(&re, all[i].name, 0, NULL, 0) != 0 : op.quick && !(all[i].flags & CI_QUICK)) continue;
         p.out[nsel++].c = &all[i];
     }
-    if (only) regfree(&re);
-    if (!nsel) {
-        fprintf(stderr, "%s: --only \"%s\" selects no configuration (see docs/CONFORMANCE-SUITE.md for the names)\n",
-                argv[0], only ? only : "");
+    if (op.only) regfree(&re);
+    if (!nsel || (op.report && report_writable(argv[0], op.report)) ||
+        (run.plots && make_dir(argv[0], "--plots", run.plots))) {
+        if (!nsel)
+            fprintf(stderr, "%s: --only \"%s\" selects no configuration (see docs/CONFORMANCE-SUITE.md for the names)\n",
+                    argv[0], op.only ? op.only : "");
         free(p.out);
         return 2;
     }
-    run.cfg.samples = samples ? samples : quick ? 8000 : 40000;
-    run.cfg.nphi = cells ? cells : quick ? 12 : 20;
+    run.cfg.samples = op.samples ? op.samples : op.quick ? 8000 : 40000;
+    run.cfg.nphi = op.cells ? op.cells : op.quick ? 12 : 20;
     run.cfg.nz = run.cfg.nphi + 1;
     run.cfg.alpha = 0.01;
-    run.nwo_max = quick ? 2 : 4;
+    run.nwo_max = op.quick ? 2 : 4;
     for (i = 0; i < nsel; ++i) {
         int j;
         for (j = 0; j < CI_MAX_LINES && p.out[i].c->lines[j]; ++j) need_data |= strstr(p.out[i].c->lines[j], "@DATA@") != NULL;
@@ -389,8 +464,7 @@ int cf_impl_main(int argc, char **argv)
                 return 2;
             }
             data = tmpdir;
-        } else if (mkdir(data, 0777) && errno != EEXIST) {
-            fprintf(stderr, "%s: --data: cannot make \"%s\": %s\n", argv[0], data, strerror(errno));
+        } else if (make_dir(argv[0], "--data", data)) {
             return 2;
         }
         if (data[0] == '/') {
@@ -419,7 +493,7 @@ int cf_impl_main(int argc, char **argv)
     }
     printf("materia-conformance --impl '%s' (materia %s build, mode %s): %d configurations, %ld samples per direction,\n"
            "%dx%d cells, %ld statistical tests, each at %.3g (Sidak: %.2g for the whole run), %g s per answer\n",
-           run.command, mt_precision(), mode_name, nsel, run.cfg.samples, run.cfg.nphi, run.cfg.nz, run.cfg.tests,
+           run.command, mt_precision(), op.mode, nsel, run.cfg.samples, run.cfg.nphi, run.cfg.nz, run.cfg.tests,
            run.cfg.alpha_test, run.cfg.alpha, run.timeout);
     fflush(stdout);
     p.n = nsel;
@@ -435,14 +509,14 @@ int cf_impl_main(int argc, char **argv)
         cfg_out *o = &p.out[i];
         int k, w;
         if (o->protocol) {
-            printf("%-5s %-44s %-9s %-15s %s\n", "FAIL", o->c->name, mode_name, "protocol", o->protocol_msg);
+            printf("%-5s %-44s %-9s %-15s %s\n", "FAIL", o->c->name, op.mode, "protocol", o->protocol_msg);
             failed++;
             continue;
         }
         for (k = 0; k < CK_NCHECK; ++k) {
             const cf_impl_result *r = &o->res[k];
             if (r->ok < 0) continue;
-            printf("%-5s %-44s %-9s %-15s %-62s %-18s%s%s\n", verdict(o, k), o->c->name, mode_name,
+            printf("%-5s %-44s %-9s %-15s %-62s %-18s%s%s\n", verdict(o, k), o->c->name, op.mode,
                    cf_impl_check_names[k], r->statistic, r->bound, r->note[0] ? " " : "", r->note);
             if (r->ok)
                 passed++;
@@ -456,8 +530,8 @@ int cf_impl_main(int argc, char **argv)
                            r->worst[w].expected, r->worst[w].got, r->worst[w].score);
         }
     }
-    if (report && write_report(report, &run, mode_name, p.out, nsel, passed, failed, xfailed)) {
-        fprintf(stderr, "%s: --report: cannot write \"%s\": %s\n", argv[0], report, strerror(errno));
+    if (op.report && write_report(op.report, &run, op.mode, p.out, nsel, passed, failed, xfailed)) {
+        fprintf(stderr, "%s: --report: cannot write \"%s\": %s\n", argv[0], op.report, strerror(errno));
         failed++;
     }
     for (i = 0; i < nsel; ++i) {

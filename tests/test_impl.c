@@ -166,11 +166,5 @@ int main(int argc, char **argv)
         wrong("few", "^plastic default$", "", few);
         wrong("extra", "^plastic default$", "", extra);
     }
-    /* usage errors */
-    snprintf(args, sizeof args, "--impl '%s/materia-query' --only 'no such configuration'", bin);
-    expect("--only selecting nothing is a usage error", args, 2, NULL);
-    snprintf(args, sizeof args, "--impl '%s/materia-query' --mode pbrt-v3", bin);
-    expect("an unknown mode is a usage error", args, 2, NULL);
-    expect("--impl without a command is a usage error", "--impl ''", 2, NULL);
     return failures ? 1 : 0;
 }

@@ -6,11 +6,14 @@
  * extension), a bad material parameter failing with nothing written,
  * --quiet dropping the Sampler notice, no progress line (no carriage return)
  * when standard error is a file; materia-query's warnings for parameters a
- * statement did not use; materia-conformance's --only that selects nothing;
- * an option given last without its value named as such (not as unknown), a
- * --dir that is not a directory, output paths checked before the work and
- * nothing half-written (materia-sheet, materia-golden).
+ * statement did not use; materia-conformance's --only that selects nothing,
+ * and --impl's command line (--impl --help, and each mistake a usage error
+ * naming the option before anything runs); an option given last without its
+ * value named as such (not as unknown), a --dir that is not a directory,
+ * output paths checked before the work and nothing half-written
+ * (materia-sheet, materia-golden).
  */
+#include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 #include "support/check.h"
@@ -103,10 +106,45 @@ static void query(void)
 
 static void conformance(void)
 {
+    /* --impl's command line: every mistake is a usage error (status 2) that
+     * names the option, found before any configuration runs (the command
+     * "q" does not exist: running it would fail otherwise) */
+    static const char *const usage_errors[][3] = {
+        {"--impl without a value", "--impl", "--impl needs a value"},
+        {"--impl ''", "--impl ''", "--impl needs a command"},
+        {"--impl of blanks", "--impl '  '", "--impl needs a command"},
+        {"an option where --impl's value is expected", "--impl --quick", "--impl needs a value (got the option \"--quick\")"},
+        {"--mode without a value", "--impl q --mode", "--mode needs a value"},
+        {"an unknown mode", "--impl q --mode pbrt-v3", "--mode: \"pbrt-v3\""},
+        {"--samples below 100", "--impl q --samples 10", "--samples: \"10\""},
+        {"--samples negative", "--impl q --samples -5", "--samples: \"-5\""},
+        {"--cells beyond int", "--impl q --cells 4294967300", "--cells: \"4294967300\""},
+        {"--threads 0", "--impl q --threads 0", "--threads: \"0\""},
+        {"--timeout nan", "--impl q --timeout nan", "--timeout: \"nan\""},
+        {"--timeout empty", "--impl q --timeout ''", "--timeout: \"\""},
+        {"an unknown option", "--impl q --frobnicate", "unknown argument \"--frobnicate\""},
+        {"a stray word", "--impl q stray", "unknown argument \"stray\""},
+        {"--impl twice", "--impl q --impl r", "--impl is given twice"},
+        {"--only not a regular expression", "--impl q --only '('", "--only: \"(\""},
+        {"--only selecting nothing", "--impl q --only 'no such configuration' --plots pl", "selects no configuration"},
+        {"--report in a missing directory", "--impl q --report nosuchdir/r.json", "--report: cannot write \"nosuchdir/r.json\""},
+        {"--plots-all without --plots", "--impl q --plots-all", "--plots-all needs --plots"},
+    };
+    size_t i;
     t_tool_check("conformance: --only that selects nothing is status 2", "materia-conformance",
                  "--only no-such-configuration", 2, "err.txt", "selects no configuration");
     t_tool_check("conformance: a bad --threads is status 2", "materia-conformance", "--threads x", 2, "err.txt",
                  "--threads");
+    t_tool_check("conformance: --impl --help is --impl's usage on standard output, status 0", "materia-conformance",
+                 "--impl --help", 0, "out.txt", "--impl 'COMMAND' [--mode pbrt-v2|corrected]");
+    t_check(t_file_holds("out.txt", "--timeout S") && !t_file_holds("out.txt", "FAIL"),
+            "conformance: --impl --help runs nothing", "out.txt lacks the options or holds a verdict");
+    for (i = 0; i < sizeof usage_errors / sizeof usage_errors[0]; ++i) {
+        char name[160];
+        snprintf(name, sizeof name, "conformance: %s is a usage error naming it", usage_errors[i][0]);
+        t_tool_check(name, "materia-conformance", usage_errors[i][1], 2, "err.txt", usage_errors[i][2]);
+    }
+    t_check(!exists("pl"), "conformance: no --plots directory made for a usage error", "pl exists");
 }
 
 /* An option that takes a value, given last: "OPTION needs a value", status 2. */
