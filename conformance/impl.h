@@ -93,17 +93,48 @@ typedef struct cf_worst {
     char query[160], expected[400], got[200];
 } cf_worst;
 
-/* One check's outcome: ok < 0 not applicable. */
-typedef struct cf_impl_result {
-    int ok;
-    char statistic[160], bound[64], note[200];
-    cf_worst worst[CI_WORST];
-} cf_impl_result;
-
 enum {
     CK_IDENTITY, CK_CHI2, CK_INTEGRAL, CK_CHI2_MATERIA, CK_FURNACE_MC, CK_FURNACE, CK_AGREE_F, CK_AGREE_PDF,
     CK_AGREE_DELTA, CK_RECIPROCITY, CK_HELMHOLTZ, CK_EXTREMES, CK_NCHECK
 };
+/* What a check measured, unit by unit (an incoming direction, a colour
+ * channel, a pair of directions), so that a failure in pbrt-v2 mode can be
+ * set against materia's on the same queries (impl_xfail.c): a statistic s
+ * whose own tolerance is z se + sys (se its standard error, z the run's
+ * two-sided z at alpha_test, sys the allowance for cubature and rounding). */
+typedef struct cf_unit {
+    double s, se, sys;
+    double at;        /* cos theta of wo, or the pair's number */
+    const char *what; /* a format with one %g, for at */
+} cf_unit;
+
+typedef struct cf_measure {
+    cf_unit *u;
+    int n, cap;
+    long *hist;       /* a chi-square's histograms: per wo, its cells and one more (failed and delta samples) */
+    double *hist_at;  /* each histogram's cos theta of wo */
+    int nhist, cap_hist, bins;
+    int oom;          /* a unit was lost: the measure cannot be compared */
+} cf_measure;
+
+/* One check's outcome: ok < 0 not applicable. */
+typedef struct cf_impl_result {
+    int ok;
+    char statistic[160], bound[64], note[240];
+    cf_worst worst[CI_WORST];
+    cf_measure m;
+} cf_impl_result;
+
+void cf_measure_add(cf_impl_result *r, double s, double se, double sys, double at, const char *what);
+void cf_measure_hist(cf_impl_result *r, const long *counts, int ncell, long other, double at);
+void cf_impl_results_free(cf_impl_result res[CK_NCHECK]);
+/* pbrt-v2 mode: a check that test failed and materia (mine, on the same
+ * queries) failed too. 1 when test fails it the way materia does (every
+ * unit within the two tolerances, every histogram like materia's by a
+ * two-sample chi-square), else 0; note says which. */
+int cf_impl_same_failure(const cf_impl_run *run, const cf_impl_result *test, const cf_impl_result *mine, char *note,
+                         size_t n);
+
 extern const char *const cf_impl_check_names[CK_NCHECK];
 
 /* Every check of one configuration: test is the implementation under test,

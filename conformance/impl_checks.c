@@ -519,12 +519,37 @@ static void plot(const cf_impl_run *run, const cf_impl_config *c, const char *ch
         fprintf(stderr, "materia-conformance: --plots: %s: %s\n", path, err.message);
 }
 
+/* A fraction k / n as a measure: its binomial standard error (at least
+ * that of one event in n, so that 0 of n still has a tolerance). */
+static void measure_fraction(cf_impl_result *r, long k, long n, double at, const char *what)
+{
+    double p = n > 0 ? (double)k / n : 0;
+    cf_measure_add(r, p, n > 0 ? sqrt(fmax(p * (1 - p), 1.0 / n) / n) : 0, 0, at, what);
+}
+
+/* The furnace at one wo, one channel: rho (the cubature of f |cos|, with
+ * error cerr, plus the delta samples' weights, whose sum over n samples is
+ * dsum, of squares dsum2) against 1 + its noise and the rounding allowance;
+ * as a measure, the cubature's error counts too. */
+static void furnace_rho(acc *a, cf_impl_result *res, double rho, double dsum, double dsum2, long n, double allow,
+                        double cerr, double z, mt_vec3 wo)
+{
+    double dm = dsum / n, se = sqrt(fmax(dsum2 / n - dm * dm, 0) / n), excess = rho - (1 + allow + 1e-6 + z * se);
+    a->rho_lo = fmin(a->rho_lo, rho);
+    a->rho_hi = fmax(a->rho_hi, rho);
+    if (excess > a->worst_excess || !a->rho_what[0]) {
+        a->worst_excess = fmax(a->worst_excess, excess);
+        snprintf(a->rho_what, sizeof a->rho_what, "rho %.6f at cos %.3g", rho, (double)wo.z);
+    }
+    cf_measure_add(&res[CK_FURNACE], rho, se, allow + 1e-6 + cerr, wo.z, "the albedo at cos %.3g");
+}
+
 /* The sampling checks of one wo. */
 static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl *test, cf_impl *ref, mt_vec3 wo,
                        int w, int density, acc *a, cf_impl_result *res)
 {
     const cf_config *cfg = &run->cfg;
-    long n = cfg->samples, i, in_cells = 0, *counts;
+    long n = cfg->samples, i, in_cells = 0, *counts, invalid = 0, unlike = 0;
     int ncell = cfg->nphi * cfg->nz, k, r = 0, nid = 0;
     float (*u)[3] = malloc((size_t)n * sizeof *u);
     mt_vec3 *wos = malloc((size_t)n * sizeof *wos), *wis = NULL;
@@ -567,7 +592,7 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
         ok &= finite_nonneg(x->pdf);
         if (ok && x->pdf > 0 && fabs(len - 1) > 1e-5) ok = 0;
         if (!ok) {
-            a->id_bad++;
+            invalid++;
             q_sample(q, sizeof q, wo, u[i]);
             a_sample(an, sizeof an, x);
             cf_worst_add(res[CK_IDENTITY].worst, 1e30, q, "finite, f >= 0, pdf >= 0, |wi| = 1", an);
@@ -608,7 +633,7 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
         for (k = 0; k < 3; ++k) d = fmax(d, rel(x->f[k], ev[i].f[k]));
         a->id_tested++;
         if (!(d <= id_tol)) {
-            a->id_bad++;
+            unlike++;
             q_eval(q, sizeof q, wo, wis[i]);
             a_eval(an, sizeof an, ev + i);
             q_sample(qs, sizeof qs, wo, u[idx[i]]);
@@ -617,8 +642,13 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
         }
         if (isfinite(d)) a->id_worst = fmax(a->id_worst, d);
     }
+    a->id_bad += invalid + unlike;
+    measure_fraction(&res[CK_IDENTITY], invalid, n, wo.z, "the fraction of invalid samples at cos %.3g");
+    measure_fraction(&res[CK_IDENTITY], unlike, nid, wo.z, "the fraction of samples unlike eval at cos %.3g");
+    cf_measure_hist(&res[CK_CHI2], counts, ncell, n - in_cells, wo.z);
+    cf_measure_hist(&res[CK_CHI2_MATERIA], counts, ncell, n - in_cells, wo.z);
     if (density) {
-        double fcos[3], gap[3], cerr = 0, integral = 0, integral_m = 0, succ = (double)in_cells / n, tol;
+        double fcos[3], gap[3], cerr = 0, integral = 0, integral_m = 0, succ = (double)in_cells / n, tol, se;
         cf_chi2 x;
         if ((r = impl_cells(test, cfg, wo, counts, n, pdfc, fcos, gap, &cerr))) goto out;
         for (k = 0; k < ncell; ++k) integral += pdfc[k];
@@ -629,7 +659,10 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
             a->min_p = x.p;
             a->dof = x.dof;
         }
-        tol = z * sqrt(fmax(succ * (1 - succ), 1.0 / n) / n) + cerr + allow;
+        se = sqrt(fmax(succ * (1 - succ), 1.0 / n) / n);
+        tol = z * se + cerr + allow;
+        cf_measure_add(&res[CK_INTEGRAL], integral - succ, se, cerr + allow, wo.z,
+                       "the pdf's integral minus the success fraction at cos %.3g");
         if (fabs(integral - succ) / tol > a->worst_int) {
             a->worst_int = fabs(integral - succ) / tol;
             snprintf(a->int_what, sizeof a->int_what, "int %.6f vs %.6f at cos %.3g", integral, succ, (double)wo.z);
@@ -644,38 +677,27 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
             a->dof_ref = x.dof;
         }
         for (k = 0; k < 3; ++k) {
-            double qd = fcos[k] - gap[k], m = sum[k] / n, se = sqrt(fmax(sum2[k] / n - m * m, 0) / n);
-            double t = z * se + cerr + allow * fabs(qd) + (double)n * DBL_EPSILON * fabs(qd) + 1e-12, dev;
-            double sm = ssum[k] / n, sse = sqrt(fmax(ssum2[k] / n - sm * sm, 0) / n), rho = fcos[k] + sm, excess;
-            if (gap[k] > cerr + allow * fabs(fcos[k]) + 1e-6 && !(c->flags & CI_SHADING_GAP)) {
+            double qd = fcos[k] - gap[k], m = sum[k] / n, se_mc = sqrt(fmax(sum2[k] / n - m * m, 0) / n);
+            double sys = cerr + allow * fabs(qd) + (double)n * DBL_EPSILON * fabs(qd) + 1e-12, dev;
+            double gap_tol = cerr + allow * fabs(fcos[k]) + 1e-6;
+            if (gap[k] > gap_tol && !(c->flags & CI_SHADING_GAP)) {
                 a->gap_bad = 1;
                 snprintf(a->gap_what, sizeof a->gap_what, "f > 0 where pdf = 0: %.4g of rho unreachable", gap[k]);
             }
+            cf_measure_add(&res[CK_FURNACE_MC], gap[k], 0, gap_tol, wo.z, "the albedo where the pdf is 0 at cos %.3g");
             a->worst_gap = fmax(a->worst_gap, gap[k]);
-            dev = fabs(m - qd) / t;
+            dev = fabs(m - qd) / (z * se_mc + sys);
+            cf_measure_add(&res[CK_FURNACE_MC], m - qd, se_mc, sys, wo.z,
+                           "the Monte Carlo albedo minus the quadrature at cos %.3g");
             if (dev > a->worst_mc || !a->mc_what[0]) {
                 a->worst_mc = fmax(a->worst_mc, dev);
-                snprintf(a->mc_what, sizeof a->mc_what, "quad %.6f MC %.6f +- %.1g at cos %.3g", qd, m, se, (double)wo.z);
+                snprintf(a->mc_what, sizeof a->mc_what, "quad %.6f MC %.6f +- %.1g at cos %.3g", qd, m, se_mc,
+                         (double)wo.z);
             }
-            a->rho_lo = fmin(a->rho_lo, rho);
-            a->rho_hi = fmax(a->rho_hi, rho);
-            excess = rho - (1 + allow + 1e-6 + z * sse);
-            if (excess > a->worst_excess || !a->rho_what[0]) {
-                a->worst_excess = fmax(a->worst_excess, excess);
-                snprintf(a->rho_what, sizeof a->rho_what, "rho %.6f at cos %.3g", rho, (double)wo.z);
-            }
+            furnace_rho(a, res, fcos[k] + ssum[k] / n, ssum[k], ssum2[k], n, allow, cerr, z, wo);
         }
     } else {
-        for (k = 0; k < 3; ++k) {
-            double sm = ssum[k] / n, sse = sqrt(fmax(ssum2[k] / n - sm * sm, 0) / n), excess;
-            a->rho_lo = fmin(a->rho_lo, sm);
-            a->rho_hi = fmax(a->rho_hi, sm);
-            excess = sm - (1 + allow + 1e-6 + z * sse);
-            if (excess > a->worst_excess || !a->rho_what[0]) {
-                a->worst_excess = fmax(a->worst_excess, excess);
-                snprintf(a->rho_what, sizeof a->rho_what, "rho %.6f at cos %.3g", sm, (double)wo.z);
-            }
-        }
+        for (k = 0; k < 3; ++k) furnace_rho(a, res, ssum[k] / n, ssum[k], ssum2[k], n, allow, 0, z, wo);
     }
 out:
     free(u);
@@ -778,21 +800,18 @@ static int pair_checks(const cf_impl_config *c, cf_impl *test, cf_impl *ref, con
                 double d = fabs(et[i].f[k] - et[m + i].f[k]) / t;
                 e = fmax(e, isfinite(d) ? d : 1e30);
                 nonzero += et[i].f[k] != 0;
+                cf_measure_add(&res[CK_RECIPROCITY], et[i].f[k] - et[m + i].f[k], 0, t, i,
+                               "f(wo, wi) - f(wi, wo) on pair %g");
             }
             worst_r = fmax(worst_r, e);
             if (e > 1) {
-                char q2[160];
+                char e2[200];
                 bad_r++;
                 q_eval(q, sizeof q, a[i], b[i]);
-                q_eval(q2, sizeof q2, a[m + i], b[m + i]);
                 a_eval(ex, sizeof ex, et + m + i);
                 a_eval(got, sizeof got, et + i);
-                snprintf(q2 + strlen(q2), sizeof q2 - strlen(q2), " answered");
-                {
-                    char e2[160];
-                    snprintf(e2, sizeof e2, "%.60s (its answer to the reverse query)", ex);
-                    cf_worst_add(res[CK_RECIPROCITY].worst, e, q, e2, got);
-                }
+                snprintf(e2, sizeof e2, "%.60s (its answer to the reverse query)", ex);
+                cf_worst_add(res[CK_RECIPROCITY].worst, e, q, e2, got);
             }
         }
     }

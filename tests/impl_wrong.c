@@ -12,6 +12,11 @@
  *   colour        red 3% low everywhere (the physics intact)
  *   skewed        samples a distorted distribution (u2 squared), reporting
  *                 eval's f and pdf where they land: only the distribution is wrong
+ *   glossy-below  pbrt-v2's erratum glossy-sample-pdf made worse: a glossy
+ *                 sample with u2 < 0.25 is sent below the horizon with f 0
+ *                 and its pdf kept, which pbrt-v2 does only for the few
+ *                 whose half vector reflects wo below it: the same failure,
+ *                 more often (eval is materia's)
  *   exit          exits with status 3 at query 500
  *   crash         aborts at query 500
  *   hang          stops answering at query 500 (and never exits by itself)
@@ -118,6 +123,10 @@ int main(int argc, char **argv)
                         a[2] = b[2];
                     }
                 }
+            }
+            if (!strcmp(bug, "glossy-below") && ((unsigned)a[7] & 24) == 8 && v[5] < 0.25) {
+                a[2] = -a[2];
+                a[3] = a[4] = a[5] = 0;
             }
             if (!strcmp(bug, "pdf-high")) a[6] *= 1.05;
             if (!strcmp(bug, "colour")) a[3] *= 0.97;

@@ -1,11 +1,12 @@
 /*
  * materia-conformance --impl, proven: materia's own query tool passes in both
- * modes (and the other precision's, when make check names it in
- * MATERIA_OTHER_QUERY), and every deliberately wrong implementation of
- * tests/impl_wrong.c is caught by the check meant to catch it, with the
- * hostile ones (exit, crash, hang, garbage, too few values, an extra line)
- * reported as such, without hanging the suite. Runs the reduced set
- * (--quick) and, for the wrong ones, one configuration each.
+ * modes, its pbrt-v2 errata expected failures (and the other precision's,
+ * when make check names it in MATERIA_OTHER_QUERY), and every deliberately
+ * wrong implementation of tests/impl_wrong.c is caught by the check meant to
+ * catch it, with the hostile ones (exit, crash, hang, garbage, too few
+ * values, an extra line) reported as such, without hanging the suite, and
+ * an erratum of pbrt-v2 made worse failed, not expected. Runs the reduced
+ * set (--quick) and, for the wrong ones, one configuration each.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,16 +46,27 @@ static int run(const char *cmd, char **output)
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-/* A line of out that starts with verdict and contains every word of what. */
+/* A line of out that starts with verdict and contains each of the texts of
+ * what, which are separated by '|'. */
 static int has_row(const char *out, const char *verdict, const char *what)
 {
     const char *l = out;
     while (l && *l) {
-        const char *e = strchr(l, '\n');
+        const char *e = strchr(l, '\n'), *w = what;
         size_t len = e ? (size_t)(e - l) : strlen(l);
         char line[2048];
+        int all = 1;
         snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line ? len : sizeof line - 1), l);
-        if (!strncmp(line, verdict, strlen(verdict)) && line[strlen(verdict)] == ' ' && strstr(line, what)) return 1;
+        if (!strncmp(line, verdict, strlen(verdict)) && line[strlen(verdict)] == ' ') {
+            while (all && w) {
+                const char *bar = strchr(w, '|');
+                char part[256];
+                snprintf(part, sizeof part, "%.*s", (int)(bar ? (size_t)(bar - w) : strlen(w)), w);
+                all = strstr(line, part) != NULL;
+                w = bar ? bar + 1 : NULL;
+            }
+            if (all) return 1;
+        }
         l = e ? e + 1 : NULL;
     }
     return 0;
@@ -75,7 +87,7 @@ static void show_tail(const char *out)
     }
 }
 
-/* cmd must exit with status `want`; each of the rows "VERDICT|check text" must be present. */
+/* cmd must exit with status `want`; each of the rows "VERDICT|text|text..." must be present. */
 static void expect(const char *name, const char *args, int want, const char *const *rows)
 {
     char cmd[12000], *out = NULL;
@@ -129,7 +141,13 @@ int main(int argc, char **argv)
     snprintf(args, sizeof args, "--impl '%s/materia-query' --quick --threads 2", bin);
     expect("materia-query passes, corrected mode", args, 0, NULL);
     snprintf(args, sizeof args, "--impl '%s/materia-query' --quick --threads 2 --mode pbrt-v2", bin);
-    expect("materia-query passes, pbrt-v2 mode", args, 0, NULL);
+    {
+        /* pbrt-v2's glossy-sample-pdf erratum, reproduced: expected failures */
+        static const char *const same[] = {"XFAIL|plastic default|identity|the same way",
+                                           "XFAIL|plastic default|chi2 materia|the same way",
+                                           "XFAIL|plastic default|pdf integral|the same way", NULL};
+        expect("materia-query passes, pbrt-v2 mode, pbrt-v2's failures expected", args, 0, same);
+    }
     if (other && *other && access(other, X_OK) == 0) {
         snprintf(args, sizeof args, "--impl '%.2000s' --quick --threads 2", other);
         expect("the other precision's materia-query passes", args, 0, NULL);
@@ -146,6 +164,12 @@ int main(int argc, char **argv)
         static const char *const colour[] = {"FAIL|agree f", "PASS|identity", "PASS|chi2  ", "PASS|furnace  ",
                                              "PASS|reciprocity", NULL};
         static const char *const skewed[] = {"FAIL|chi2  ", "FAIL|chi2 materia", "PASS|identity", NULL};
+        /* pbrt-v2's erratum made worse: not expected failures (the previous
+         * rule, "materia fails it too", made these three rows XFAIL) */
+        static const char *const worse[] = {"FAIL|identity|worse than pbrt-v2 does",
+                                             "FAIL|chi2  |not distributed as materia's",
+                                             "FAIL|chi2 materia|not distributed as materia's",
+                                             "XFAIL|pdf integral|the same way", "PASS|agree f", "PASS|agree pdf", NULL};
         static const char *const gone[] = {"FAIL|exited with status 3", NULL};
         static const char *const crash[] = {"FAIL|it crashed", NULL};
         static const char *const hang[] = {"FAIL|hung: no answer within 1 s", NULL};
@@ -159,6 +183,7 @@ int main(int argc, char **argv)
         wrong("nan-grazing", "^matte Kd=1$", "", nan);
         wrong("colour", "^plastic default$", "", colour);
         wrong("skewed", "^plastic default$", "", skewed);
+        wrong("glossy-below", "^plastic default$", "--mode pbrt-v2", worse);
         wrong("exit", "^plastic default$", "", gone);
         wrong("crash", "^plastic default$", "", crash);
         wrong("hang", "^plastic default$", "--timeout 1", hang);
