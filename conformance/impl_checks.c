@@ -91,6 +91,16 @@ static double rel(double a, double b)
 
 static int finite_nonneg(double x) { return isfinite(x) && x >= 0; }
 
+/* Finite, f >= 0 and pdf >= 0, and when the pdf is > 0 a wi of unit length
+ * (to tol). */
+static int sample_valid(const cf_samp *x, double tol)
+{
+    double len = sqrt(x->wi[0] * x->wi[0] + x->wi[1] * x->wi[1] + x->wi[2] * x->wi[2]);
+    int ok = finite_nonneg(x->pdf), k;
+    for (k = 0; k < 3; ++k) ok &= finite_nonneg(x->f[k]) && isfinite(x->wi[k]);
+    return ok && (!(x->pdf > 0) || fabs(len - 1) <= tol);
+}
+
 static void q_eval(char *q, size_t n, mt_vec3 wo, mt_vec3 wi)
 {
     snprintf(q, n, "eval %.9g %.9g %.9g %.9g %.9g %.9g", (double)wo.x, (double)wo.y, (double)wo.z, (double)wi.x,
@@ -482,9 +492,13 @@ typedef struct acc {
     long id_bad, id_tested;
     double id_worst;
     /* chi2 / integral / furnace */
-    double min_p, min_p_ref, worst_int, worst_mc, worst_excess, rho_lo, rho_hi, worst_gap;
-    long dof, dof_ref;
-    int chi_hard, chi_ref_hard, gap_bad;
+    struct {
+        double min_p;
+        long dof;
+        int hard;
+    } chi[2]; /* chi2 (its own pdf), chi2 materia */
+    double worst_int, worst_mc, worst_excess, rho_lo, rho_hi, worst_gap;
+    int gap_bad;
     char int_what[96], mc_what[96], rho_what[96], gap_what[96];
 } acc;
 
@@ -517,6 +531,28 @@ static void plot(const cf_impl_run *run, const cf_impl_config *c, const char *ch
     mt_error_clear(&err);
     if (cf_impl_plot(path, title, sub, label, &run->cfg, counts, pdfc, run->cfg.samples, &err))
         fprintf(stderr, "materia-conformance: --plots: %s: %s\n", path, err.message);
+}
+
+/* The chi-square of wo number w's counts against the cells' probabilities
+ * pdfc, by its own pdf (which 0) or materia's (1): the worst p over wo, a
+ * hard failure, the picture. Returns the sum of pdfc (the pdf's integral). */
+static double chi2_wo(const cf_impl_run *run, const cf_impl_config *c, int which, mt_vec3 wo, int w,
+                      const long *counts, const double *pdfc, long in_cells, acc *a)
+{
+    static const char *const check[2] = {"chi2", "chi2 materia"}, *const label[2] = {"expected (own pdf)",
+                                                                                    "expected (materia)"};
+    double integral = 0;
+    int k, ncell = run->cfg.nphi * run->cfg.nz;
+    cf_chi2 x;
+    for (k = 0; k < ncell; ++k) integral += pdfc[k];
+    cf_chi2_cells(&run->cfg, counts, pdfc, run->cfg.samples, in_cells, integral, &x);
+    plot(run, c, check[which], wo, w, counts, pdfc, &x, label[which]);
+    if (x.hard) a->chi[which].hard = 1;
+    if (x.p < a->chi[which].min_p) {
+        a->chi[which].min_p = x.p;
+        a->chi[which].dof = x.dof;
+    }
+    return integral;
 }
 
 /* A fraction k / n as a measure: its binomial standard error (at least
@@ -586,12 +622,7 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
     }
     for (i = 0; i < n; ++i) {
         const cf_samp *x = s + i;
-        int ok = 1;
-        double len = sqrt(x->wi[0] * x->wi[0] + x->wi[1] * x->wi[1] + x->wi[2] * x->wi[2]);
-        for (k = 0; k < 3; ++k) ok &= isfinite(x->wi[k]) && finite_nonneg(x->f[k]);
-        ok &= finite_nonneg(x->pdf);
-        if (ok && x->pdf > 0 && fabs(len - 1) > 1e-5) ok = 0;
-        if (!ok) {
+        if (!sample_valid(x, 1e-5)) {
             invalid++;
             q_sample(q, sizeof q, wo, u[i]);
             a_sample(an, sizeof an, x);
@@ -648,17 +679,9 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
     cf_measure_hist(&res[CK_CHI2], counts, ncell, n - in_cells, wo.z);
     cf_measure_hist(&res[CK_CHI2_MATERIA], counts, ncell, n - in_cells, wo.z);
     if (density) {
-        double fcos[3], gap[3], cerr = 0, integral = 0, integral_m = 0, succ = (double)in_cells / n, tol, se;
-        cf_chi2 x;
+        double fcos[3], gap[3], cerr = 0, integral, succ = (double)in_cells / n, tol, se;
         if ((r = impl_cells(test, cfg, wo, counts, n, pdfc, fcos, gap, &cerr))) goto out;
-        for (k = 0; k < ncell; ++k) integral += pdfc[k];
-        cf_chi2_cells(cfg, counts, pdfc, n, in_cells, integral, &x);
-        plot(run, c, "chi2", wo, w, counts, pdfc, &x, "expected (own pdf)");
-        if (x.hard) a->chi_hard = 1;
-        if (x.p < a->min_p) {
-            a->min_p = x.p;
-            a->dof = x.dof;
-        }
+        integral = chi2_wo(run, c, 0, wo, w, counts, pdfc, in_cells, a);
         se = sqrt(fmax(succ * (1 - succ), 1.0 / n) / n);
         tol = z * se + cerr + allow;
         cf_measure_add(&res[CK_INTEGRAL], integral - succ, se, cerr + allow, wo.z,
@@ -668,14 +691,7 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
             snprintf(a->int_what, sizeof a->int_what, "int %.6f vs %.6f at cos %.3g", integral, succ, (double)wo.z);
         }
         if ((r = ref_cells(ref, cfg, wo, counts, n, pdfm))) goto out;
-        for (k = 0; k < ncell; ++k) integral_m += pdfm[k];
-        cf_chi2_cells(cfg, counts, pdfm, n, in_cells, integral_m, &x);
-        plot(run, c, "chi2 materia", wo, w, counts, pdfm, &x, "expected (materia)");
-        if (x.hard) a->chi_ref_hard = 1;
-        if (x.p < a->min_p_ref) {
-            a->min_p_ref = x.p;
-            a->dof_ref = x.dof;
-        }
+        chi2_wo(run, c, 1, wo, w, counts, pdfm, in_cells, a);
         for (k = 0; k < 3; ++k) {
             double qd = fcos[k] - gap[k], m = sum[k] / n, se_mc = sqrt(fmax(sum2[k] / n - m * m, 0) / n);
             double sys = cerr + allow * fabs(qd) + (double)n * DBL_EPSILON * fabs(qd) + 1e-12, dev;
@@ -1073,11 +1089,7 @@ static int extremes_check(cf_impl *test, cf_impl_result *res)
         goto out;
     }
     for (i = 0; i < ns; ++i) {
-        int ok = finite_nonneg(s[i].pdf);
-        double len = sqrt(s[i].wi[0] * s[i].wi[0] + s[i].wi[1] * s[i].wi[1] + s[i].wi[2] * s[i].wi[2]);
-        for (k = 0; k < 3; ++k) ok &= finite_nonneg(s[i].f[k]) && isfinite(s[i].wi[k]);
-        if (ok && s[i].pdf > 0 && !(fabs(len - 1) <= 1e-4)) ok = 0;
-        if (!ok) {
+        if (!sample_valid(s + i, 1e-4)) {
             bad++;
             q_sample(q, sizeof q, a[i], u[i]);
             a_sample(got, sizeof got, s + i);
@@ -1108,7 +1120,7 @@ int cf_impl_checks(const cf_impl_run *run, const cf_impl_config *c, cf_impl *tes
         res[k].ok = -1;
     }
     memset(&a, 0, sizeof a);
-    a.min_p = a.min_p_ref = 2;
+    a.chi[0].min_p = a.chi[1].min_p = 2;
     a.rho_lo = 1e300;
     a.rho_hi = -1e300;
     for (w = 0; w < nwo && !r; ++w) r = sampling_wo(run, c, test, ref, wo[w], w, density, &a, res);
@@ -1121,14 +1133,13 @@ int cf_impl_checks(const cf_impl_run *run, const cf_impl_config *c, cf_impl *tes
     }
     if (density) {
         snprintf(b, sizeof b, "p >= %.2g", cfg->alpha_test);
-        if (a.chi_hard)
-            set(&res[CK_CHI2], 0, b, "hard failure: samples where its own pdf is 0");
-        else
-            set(&res[CK_CHI2], a.min_p >= cfg->alpha_test, b, "min p %.3g (%ld dof)", a.min_p, a.dof);
-        if (a.chi_ref_hard)
-            set(&res[CK_CHI2_MATERIA], 0, b, "hard failure: samples where materia's pdf is 0");
-        else
-            set(&res[CK_CHI2_MATERIA], a.min_p_ref >= cfg->alpha_test, b, "min p %.3g (%ld dof)", a.min_p_ref, a.dof_ref);
+        for (k = 0; k < 2; ++k)
+            if (a.chi[k].hard)
+                set(&res[k ? CK_CHI2_MATERIA : CK_CHI2], 0, b, "hard failure: samples where %s pdf is 0",
+                    k ? "materia's" : "its own");
+            else
+                set(&res[k ? CK_CHI2_MATERIA : CK_CHI2], a.chi[k].min_p >= cfg->alpha_test, b, "min p %.3g (%ld dof)",
+                    a.chi[k].min_p, a.chi[k].dof);
         set(&res[CK_INTEGRAL], a.worst_int <= 1, "dev/tol <= 1", "dev/tol %.2f (%s)", a.worst_int, a.int_what);
         if (a.gap_bad)
             set(&res[CK_FURNACE_MC], 0, "pdf covers f", "%s", a.gap_what);

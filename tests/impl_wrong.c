@@ -53,6 +53,18 @@ static double scale_f(const char *bug, const double *wo, const double *wi)
     return 1;
 }
 
+/* materia's sample from wo = v[0..2] with uc = v[3] and (u1, u2): 1 and
+ * its eight values in b when it succeeded. */
+static int resample(mt_query *q, const double *v, double u1, double u2, double *b)
+{
+    char line[256], ans[4096];
+    snprintf(line, sizeof line, "sample %.9g %.9g %.9g %.9g %.9g %.9g", v[0], v[1], v[2], v[3], u1, u2);
+    return mt_query_line(q, line, ans, sizeof ans) &&
+           sscanf(ans, "%lf %lf %lf %lf %lf %lf %lf %lf", &b[0], &b[1], &b[2], &b[3], &b[4], &b[5], &b[6], &b[7]) ==
+               8 &&
+           b[6] > 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *bug = argc > 1 ? argv[1] : "none";
@@ -95,27 +107,17 @@ int main(int argc, char **argv)
                    sscanf(ans, "%lf %lf %lf %lf %lf %lf %lf %lf", &a[0], &a[1], &a[2], &a[3], &a[4], &a[5], &a[6],
                           &a[7]) == 8) {
             double s = scale_f(bug, v, a);
-            if (!strcmp(bug, "other-dir") && !((unsigned)a[7] & 16)) {
+            double b[8];
+            if (!strcmp(bug, "other-dir") && !((unsigned)a[7] & 16) && resample(q, v, v[5], v[4], b)) {
                 /* f and pdf of the sample that swapped u1 and u2 */
-                char l2[256], a2[4096];
-                double b[8];
-                snprintf(l2, sizeof l2, "sample %.9g %.9g %.9g %.9g %.9g %.9g", v[0], v[1], v[2], v[3], v[5], v[4]);
-                if (mt_query_line(q, l2, a2, sizeof a2) &&
-                    sscanf(a2, "%lf %lf %lf %lf %lf %lf %lf %lf", &b[0], &b[1], &b[2], &b[3], &b[4], &b[5], &b[6],
-                           &b[7]) == 8 && b[6] > 0) {
-                    a[3] = b[3];
-                    a[4] = b[4];
-                    a[5] = b[5];
-                    a[6] = b[6];
-                }
+                a[3] = b[3];
+                a[4] = b[4];
+                a[5] = b[5];
+                a[6] = b[6];
             }
             if (!strcmp(bug, "skewed") && !((unsigned)a[7] & 16)) {
                 char l2[256], a2[4096];
-                double b[8];
-                snprintf(l2, sizeof l2, "sample %.9g %.9g %.9g %.9g %.9g %.9g", v[0], v[1], v[2], v[3], v[4], v[5] * v[5]);
-                if (mt_query_line(q, l2, a2, sizeof a2) &&
-                    sscanf(a2, "%lf %lf %lf %lf %lf %lf %lf %lf", &b[0], &b[1], &b[2], &b[3], &b[4], &b[5], &b[6],
-                           &b[7]) == 8 && b[6] > 0) {
+                if (resample(q, v, v[4], v[5] * v[5], b)) {
                     snprintf(l2, sizeof l2, "eval %.9g %.9g %.9g %.9g %.9g %.9g", v[0], v[1], v[2], b[0], b[1], b[2]);
                     if (mt_query_line(q, l2, a2, sizeof a2) && sscanf(a2, "%lf %lf %lf %lf", &a[3], &a[4], &a[5], &a[6]) == 4) {
                         a[0] = b[0];
