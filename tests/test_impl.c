@@ -11,105 +11,26 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
+#include "support/toutput.h"
 
 static char bin[1100], tests_dir[1024];
 static int failures;
-
-/* Runs cmd, returns its exit status and its output (malloc'd). */
-static int run(const char *cmd, char **output)
-{
-    FILE *p = popen(cmd, "r");
-    size_t n = 0, cap = 1 << 16;
-    char *buf = malloc(cap);
-    int st;
-    if (!p || !buf) {
-        free(buf);
-        *output = NULL;
-        return -1;
-    }
-    for (;;) {
-        size_t r;
-        if (n + 4096 > cap) {
-            char *b = realloc(buf, cap *= 2);
-            if (!b) break;
-            buf = b;
-        }
-        r = fread(buf + n, 1, cap - n - 1, p);
-        if (!r) break;
-        n += r;
-    }
-    buf[n] = 0;
-    st = pclose(p);
-    *output = buf;
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-/* A line of out that starts with verdict and contains each of the texts of
- * what, which are separated by '|'. */
-static int has_row(const char *out, const char *verdict, const char *what)
-{
-    const char *l = out;
-    while (l && *l) {
-        const char *e = strchr(l, '\n'), *w = what;
-        size_t len = e ? (size_t)(e - l) : strlen(l);
-        char line[2048];
-        int all = 1;
-        snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line ? len : sizeof line - 1), l);
-        if (!strncmp(line, verdict, strlen(verdict)) && line[strlen(verdict)] == ' ') {
-            while (all && w) {
-                const char *bar = strchr(w, '|');
-                char part[256];
-                snprintf(part, sizeof part, "%.*s", (int)(bar ? (size_t)(bar - w) : strlen(w)), w);
-                all = strstr(line, part) != NULL;
-                w = bar ? bar + 1 : NULL;
-            }
-            if (all) return 1;
-        }
-        l = e ? e + 1 : NULL;
-    }
-    return 0;
-}
-
-static void show_tail(const char *out)
-{
-    const char *l = out;
-    int shown = 0;
-    while (l && *l && shown < 12) {
-        const char *e = strchr(l, '\n');
-        size_t len = e ? (size_t)(e - l) : strlen(l);
-        if (strncmp(l, "PASS", 4)) {
-            printf("    | %.*s\n", (int)(len > 300 ? 300 : len), l);
-            shown++;
-        }
-        l = e ? e + 1 : NULL;
-    }
-}
 
 /* cmd must exit with status `want`; each of the rows "VERDICT|text|text..." must be present. */
 static void expect(const char *name, const char *args, int want, const char *const *rows)
 {
     char cmd[12000], *out = NULL;
-    int st, ok, i;
+    int st, ok;
     snprintf(cmd, sizeof cmd, "%.1100s/materia-conformance %.8192s 2>&1", bin, args);
-    st = run(cmd, &out);
-    ok = st == want && out;
-    for (i = 0; ok && rows && rows[i]; ++i) {
-        char verdict[16];
-        const char *bar = strchr(rows[i], '|');
-        snprintf(verdict, sizeof verdict, "%.*s", (int)(bar - rows[i]), rows[i]);
-        if (!has_row(out, verdict, bar + 1)) {
-            ok = 0;
-            printf("    missing a row \"%s ... %s\"\n", verdict, bar + 1);
-        }
-    }
+    st = t_run_output(cmd, &out);
+    ok = st == want && t_has_rows(out, rows);
     if (ok && want == 0 && !strstr(out, " passed, 0 failed")) ok = 0;
     printf("%s impl: %s (exit %d, want %d)\n", ok ? "PASS" : "FAIL", name, st, want);
     if (!ok) {
         failures++;
         printf("    command: %s\n", cmd);
-        if (out) show_tail(out);
+        t_show_unpassed(out, 12);
     }
     free(out);
 }

@@ -1,0 +1,90 @@
+/* A command's output and the rows in it: see toutput.h. */
+#include "support/toutput.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+int t_run_output(const char *cmd, char **output)
+{
+    FILE *p = popen(cmd, "r");
+    size_t n = 0, cap = 1 << 16;
+    char *buf = malloc(cap);
+    int st;
+    *output = NULL;
+    if (!p || !buf) {
+        if (p) pclose(p);
+        free(buf);
+        return -1;
+    }
+    for (;;) {
+        size_t r;
+        if (n + 4096 > cap) {
+            char *b = realloc(buf, cap *= 2);
+            if (!b) break;
+            buf = b;
+        }
+        r = fread(buf + n, 1, cap - n - 1, p);
+        if (!r) break;
+        n += r;
+    }
+    buf[n] = 0;
+    st = pclose(p);
+    *output = buf;
+    return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+int t_has_row(const char *out, const char *verdict, const char *what)
+{
+    const char *l = out;
+    size_t vlen = strlen(verdict);
+    while (l && *l) {
+        const char *e = strchr(l, '\n'), *w = what;
+        size_t len = e ? (size_t)(e - l) : strlen(l);
+        char line[2048];
+        int all = 1;
+        snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line ? len : sizeof line - 1), l);
+        if (!strncmp(line, verdict, vlen) && line[vlen] == ' ') {
+            while (all && w) {
+                const char *bar = strchr(w, '|');
+                char part[256];
+                snprintf(part, sizeof part, "%.*s", (int)(bar ? (size_t)(bar - w) : strlen(w)), w);
+                all = strstr(line, part) != NULL;
+                w = bar ? bar + 1 : NULL;
+            }
+            if (all) return 1;
+        }
+        l = e ? e + 1 : NULL;
+    }
+    return 0;
+}
+
+int t_has_rows(const char *out, const char *const *rows)
+{
+    int i, ok = 1;
+    for (i = 0; out && rows && rows[i]; ++i) {
+        char verdict[16];
+        const char *bar = strchr(rows[i], '|');
+        snprintf(verdict, sizeof verdict, "%.*s", (int)(bar ? (size_t)(bar - rows[i]) : strlen(rows[i])), rows[i]);
+        if (!bar || !t_has_row(out, verdict, bar + 1)) {
+            ok = 0;
+            printf("    missing a row \"%s ... %s\"\n", verdict, bar ? bar + 1 : "");
+        }
+    }
+    return ok && out;
+}
+
+void t_show_unpassed(const char *out, int max)
+{
+    const char *l = out;
+    int shown = 0;
+    while (l && *l && shown < max) {
+        const char *e = strchr(l, '\n');
+        size_t len = e ? (size_t)(e - l) : strlen(l);
+        if (strncmp(l, "PASS", 4)) {
+            printf("    | %.*s\n", (int)(len > 300 ? 300 : len), l);
+            shown++;
+        }
+        l = e ? e + 1 : NULL;
+    }
+}
