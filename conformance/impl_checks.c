@@ -140,6 +140,16 @@ static int wo_set(const cf_impl_config *c, int per_side, mt_vec3 *wo)
     return n;
 }
 
+/* A uniform number in [0, 1) as the float the query line carries: the
+ * double build's uniform can round up to 1.0f (about one in 2^25; the
+ * protocol rightly refuses u = 1), so it stops at the float below 1. The
+ * float build's uniform is already such a float: the same numbers. */
+static float u_float(mt_rng *rng)
+{
+    float u = (float)mt_rng_uniform(rng);
+    return u < 1 ? u : 0x1.fffffep-1f;
+}
+
 static uint64_t seed_of(const char *name, int k)
 {
     uint64_t s = 0x9e3779b97f4a7c15ULL * (uint64_t)(k + 1);
@@ -605,9 +615,9 @@ static int sampling_wo(const cf_impl_run *run, const cf_impl_config *c, cf_impl 
     }
     mt_rng_seed(&rng, seed_of(c->name, w), 77);
     for (i = 0; i < n; ++i) {
-        u[i][0] = (float)mt_rng_uniform(&rng);
-        u[i][1] = (float)mt_rng_uniform(&rng);
-        u[i][2] = (float)mt_rng_uniform(&rng);
+        u[i][0] = u_float(&rng);
+        u[i][1] = u_float(&rng);
+        u[i][2] = u_float(&rng);
         wos[i] = wo;
     }
     if (cf_impl_sample(test, (int)n, wos, (const float(*)[3])u, s)) {
