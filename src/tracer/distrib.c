@@ -39,6 +39,9 @@ mt_real mt__distrib1d_sample(const mt__distrib1d *d, mt_real u, mt_real *pdf, in
     /* the first cdf entry above u (std::upper_bound), then one back */
     int lo = 0, hi = d->count + 1, i;
     mt_real du, width;
+    /* one value (a constant infinite light): the search's answer, lo = 1
+     * for any u < cdf[1] = 1, without the search */
+    if (d->count == 1 && u < d->cdf[1]) lo = hi = 1;
     while (lo < hi) {
         int mid = lo + (hi - lo) / 2;
         if (d->cdf[mid] > u) hi = mid;
