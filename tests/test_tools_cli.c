@@ -194,11 +194,17 @@ static void others(void)
         {"query: a --dir that is a file is status 1", "materia-query", "--dir good.pbrt", 1,
          "--dir \"good.pbrt\": not a directory"},
         {"merl: a --dir that does not exist is status 1, named", "materia-merl",
-         "--out m.binary --dir nosuchdir 'Material \"matte\"'", 1, "--dir \"nosuchdir\""}};
+         "--out m.binary --dir nosuchdir 'Material \"matte\"'", 1, "--dir \"nosuchdir\""},
+        {"merl: an unknown material is located at its statement", "materia-merl",
+         "--out m.binary 'Texture \"t\" \"float\" \"constant\"' 'Material \"nosuch\"'", 1,
+         "<statements>:2:1: material type \"nosuch\" unknown"},
+        {"merl: a parameter out of range is located at its statement", "materia-merl",
+         "--out m.binary 'Material \"plastic\" \"float roughness\" [-1]'", 1,
+         "<statements>:1:20: parameter \"roughness\""}};
     size_t i;
     for (i = 0; i < sizeof bad / sizeof bad[0]; ++i)
         t_tool_check(bad[i].name, bad[i].tool, bad[i].args, bad[i].status, "err.txt", bad[i].text);
-    t_check(!exists("m.binary"), "merl: nothing written for a bad --dir", "m.binary exists");
+    t_check(!exists("m.binary"), "merl: nothing written for a bad --dir or a bad material", "m.binary exists");
     t_tool_check("golden: --renders 1 is status 2, saying why", "materia-golden",
                  "good.pbrt --renders 1 --spp 1 -o m.exr --variance v.exr --stats s.txt", 2, "err.txt",
                  "--renders K needs K >= 2");

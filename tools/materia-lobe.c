@@ -353,7 +353,9 @@ static void usage(FILE *f)
             "usage: %s [--impl 'COMMAND'] [--against 'COMMAND'] [--mode pbrt-v2|corrected] [--samples N]\n"
             "       [--timeout SECONDS] [--raw PREFIX] --wo THETA PHI -o lobe.png STATEMENTS...\n"
             "       %s --help | --version\n"
-            "THETA and PHI in degrees; the statements (pbrt-v2 scene text, joined with spaces) make the material\n",
+            "THETA and PHI in degrees; the statements (pbrt-v2 scene text, joined with spaces) make the material\n"
+            "  --samples N   samples for the histogram, 0 to 1e8 (default 200000; 0: no samples drawn, the\n"
+            "                histogram panels stay empty)\n",
             prog, prog);
 }
 

@@ -25,6 +25,8 @@ static int usage(FILE *f)
             "usage: %s -o SHEET.png [--columns N] [--exposure STOPS] [--font-scale K]\n"
             "       LABEL=IMAGE ... (or IMAGE: labelled with its file name)\n"
             "       %s --help | --version\n"
+            "  --columns N      images per row, 0 to 4096 (default 0: the smallest N with N x N\n"
+            "                   at least the number of images)\n"
             "Exit status 0 written, 1 failure (an image unreadable, the sheet not written),\n"
             "2 wrong command line.\n",
             prog, prog);

@@ -5,6 +5,7 @@
  * the standard shading point (mt_diffgeom_default, geometric normal = shading
  * normal) and tabulated at the MERL grid.
  */
+#include <stdio.h>
 #include <string.h>
 #include "core/alloc.h"
 #include "materia/material.h"
@@ -14,6 +15,10 @@
 typedef struct apply_ctx {
     mt_state *state;
     int materials;
+    /* where the current material was chosen: an error creating it is
+     * reported there, as the query tool reports it at the statement */
+    char file[256];
+    int line, column;
 } apply_ctx;
 
 static mt_status apply(void *ctx, const mt_statement *st, mt_error *err)
@@ -29,13 +34,19 @@ static mt_status apply(void *ctx, const mt_statement *st, mt_error *err)
                             "AttributeBegin/End, Texture, Material, MakeNamedMaterial, "
                             "NamedMaterial)", st->directive);
     }
-    if (!strcmp(st->directive, "Material") || !strcmp(st->directive, "NamedMaterial")) a->materials++;
+    if (!strcmp(st->directive, "Material") || !strcmp(st->directive, "NamedMaterial")) {
+        a->materials++;
+        snprintf(a->file, sizeof a->file, "%s", st->file ? st->file : "");
+        a->line = st->line;
+        a->column = st->column;
+    }
     return MT_OK;
 }
 
-static mt_status tabulate_material(const mt_state *s, const mt_merl_options *opt,
+static mt_status tabulate_material(const apply_ctx *a, const mt_merl_options *opt,
                                    const char *path, mt_error *err)
 {
+    const mt_state *s = a->state;
     mt_material_spec spec;
     mt_diffgeom dg = mt_diffgeom_default();
     mt_material *m = mt_material_from_state(s, NULL, err);
@@ -43,6 +54,7 @@ static mt_status tabulate_material(const mt_state *s, const mt_merl_options *opt
     mt_bsdf *b = arena ? mt_material_get_bsdf(m, &dg, &dg, arena, err) : NULL;
     double *values = b ? mt__malloc(3 * (size_t)MT_MERL_SAMPLES * sizeof *values) : NULL;
     mt_status st = err ? err->status : MT_ERR_INVALID;
+    if (!m && err && !err->file[0]) mt_error_locate(err, a->file, a->line, a->column);
     if (m && !arena) st = mt_error_set(err, MT_ERR_NOMEM, "out of memory for a shading arena");
     if (b && !values) st = mt_error_set(err, MT_ERR_NOMEM, "out of memory for a MERL table");
     if (values) {
@@ -78,7 +90,7 @@ mt_status mt_merl_write_statements(const char *statements, const mt_merl_options
     if (st == MT_OK && a.materials == 0)
         st = mt_error_set(err, MT_ERR_INVALID,
                           "no Material or NamedMaterial statement: nothing to tabulate");
-    if (st == MT_OK) st = tabulate_material(a.state, opt, path, err);
+    if (st == MT_OK) st = tabulate_material(&a, opt, path, err);
     mt_state_destroy(a.state);
     return st;
 }
