@@ -52,7 +52,6 @@ mt_rgb mt__vertex_le(const mt_scene *s, const mt__vertex *v)
 static mt_rgb light_along(const mt_scene *s, const mt__light *light, const mt_ray *ray)
 {
     mt_hit hit;
-    mt_surface sf;
     if (light->kind == MT__LIGHT_INFINITE)
         return mt_geometry_occluded(s->geom, ray) ? mt_rgb_black() : mt__light_le(light, ray->d);
     if (light->kind != MT__LIGHT_AREA) return mt_rgb_black();
@@ -70,14 +69,12 @@ static mt_rgb light_along(const mt_scene *s, const mt__light *light, const mt_ra
         before = *ray;
         before.tmax = hit.t * (1 - (mt_real)1e-4); /* the light itself is not in the way */
         if (mt_geometry_occluded(s->geom, &before)) return mt_rgb_black();
-        mt_hit_surface_no_uv(&hit, &r, &sf);
-        return mt__area_light_l(light, sf.dg.n, mt_v3_neg(ray->d));
+        return mt__area_light_l(light, mt_hit_normal(&hit, &r), mt_v3_neg(ray->d));
     }
     if (mt_geometry_intersect(s->geom, ray, &hit)) {
         const mt__prim_info *info = mt_shape_user(hit.shape);
         if (info->light < 0 || &s->lights[info->light] != light) return mt_rgb_black();
-        mt_hit_surface_no_uv(&hit, ray, &sf);
-        return mt__area_light_l(light, sf.dg.n, mt_v3_neg(ray->d));
+        return mt__area_light_l(light, mt_hit_normal(&hit, ray), mt_v3_neg(ray->d));
     }
     return mt_rgb_black();
 }

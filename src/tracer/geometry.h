@@ -210,6 +210,10 @@ void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf);
  * come from the point alone). For callers that read the geometry only, or
  * whose material evaluates no texture there. */
 void mt_hit_surface_no_uv(const mt_hit *hit, const mt_ray *r, mt_surface *sf);
+/* The surface normal dg.n alone, the bits mt_hit_surface gives: for a
+ * triangle without the point, its error bound and (u, v) (an area light's
+ * ShapeSet asks for nothing else, twice a vertex). */
+mt_vec3 mt_hit_normal(const mt_hit *hit, const mt_ray *r);
 
 /* pbrt-v2 DifferentialGeometry::ComputeDifferentials: dpdx, dpdy and the
  * (u, v) derivatives from the neighbouring rays' intersections with the

@@ -358,6 +358,14 @@ static void hit_surface(const mt_hit *hit, const mt_ray *r, int want_uv, mt_surf
 void mt_hit_surface(const mt_hit *hit, const mt_ray *r, mt_surface *sf) { hit_surface(hit, r, 1, sf); }
 void mt_hit_surface_no_uv(const mt_hit *hit, const mt_ray *r, mt_surface *sf) { hit_surface(hit, r, 0, sf); }
 
+mt_vec3 mt_hit_normal(const mt_hit *hit, const mt_ray *r)
+{
+    mt_surface sf;
+    if (hit->shape->kind == MT_SHAPE_TRIANGLES) return mt__triangle_normal(hit->shape, hit->prim);
+    hit_surface(hit, r, 0, &sf);
+    return sf.dg.n;
+}
+
 int mt_surface_has_shading(const mt_surface *sf)
 {
     return sf->shape->kind == MT_SHAPE_TRIANGLES && (sf->shape->N || sf->shape->S);

@@ -105,6 +105,9 @@ mt_status mt__trianglemesh_init(mt_shape *s, const mt_paramset *ps, const mt_sha
                                 mt_error *err);
 mt_status mt__mesh_init(mt_shape *s, int ntris, const int *indices, int nverts, const mt_vec3 *P,
                         const mt_vec3 *N, const mt_vec3 *S, const mt_real *uv, mt_error *err);
+/* The normal mt__triangle_surface gives the triangle's hits (its frame's
+ * third vector), without the rest of the surface. */
+mt_vec3 mt__triangle_normal(const mt_shape *s, uint32_t prim);
 void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real b2, mt_real t,
                           const mt_ray *r, mt_surface *sf);
 void mt__triangle_shading(const mt_surface *sf, mt_diffgeom *shading);

@@ -77,7 +77,6 @@ mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 w
     mt_real pdf = 0;
     mt_ray r;
     mt_hit hit;
-    mt_surface sf;
     int more = s->kind != MT_SHAPE_TRIANGLES && s->kind != MT_SHAPE_DISK &&
                ((s->mode & MT_FIX_SHAPESET_HIT) || mt__sphere_area_sampled(s));
     if (s->kind == MT_SHAPE_SPHERE && mt__sphere_pdf_from(s, p, wi, &pdf)) return pdf;
@@ -87,9 +86,8 @@ mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 w
      * point), a quadric's second point along the ray adds its own */
     r = mt_ray_make(p, wi, (mt_real)1e-3, MT_RAY_TMAX);
     while (mt_shape_intersect(s, prim, &r, &hit)) {
-        mt_hit_surface_no_uv(&hit, &r, &sf);
         pdf += mt_v3_len2(mt_v3_sub(p, mt_ray_at(&r, hit.t))) /
-               (mt_v3_absdot(sf.dg.n, mt_v3_neg(wi)) * density_area(s, prim, &hit));
+               (mt_v3_absdot(mt_hit_normal(&hit, &r), mt_v3_neg(wi)) * density_area(s, prim, &hit));
         if (!more) break;
         more = 0;
         r.tmin = mt__next_toward(hit.t, MT_REAL_MAX);
@@ -164,11 +162,7 @@ mt_vec3 mt_shape_set_sample_from(const mt_shape *s, mt_vec3 p, mt_real ucomp, mt
             any = 1;
             if (s->mode & MT_FIX_SHAPESET_HIT) r.tmax = hit.t;
         }
-    if (any) {
-        mt_surface sf;
-        mt_hit_surface_no_uv(&last, &r, &sf);
-        *ns = sf.dg.n;
-    }
+    if (any) *ns = mt_hit_normal(&last, &r);
     return mt_ray_at(&r, thit);
 }
 

@@ -305,6 +305,14 @@ static void triangle_frame(const mt_shape *s, uint32_t prim, mt_vec3 frame[3])
     frame[2] = mt_v3((mt_real)n[0], (mt_real)n[1], (mt_real)n[2]);
 }
 
+mt_vec3 mt__triangle_normal(const mt_shape *s, uint32_t prim)
+{
+    mt_vec3 frame[3];
+    if (s->tri_frames) return s->tri_frames[3 * (size_t)prim + 2];
+    triangle_frame(s, prim, frame);
+    return frame[2];
+}
+
 mt_status mt__triangle_frames_init(mt_shape *s, mt_error *err)
 {
     uint32_t i;
