@@ -28,6 +28,19 @@ for t in "$@"; do
     arts=$(ls "$build/artifacts" | grep -v "^$t-slow-unit-" | grep -c "^$t-")
     slow=$(ls "$build/artifacts" | grep -c "^$t-slow-unit-")
     echo "fuzz $t: ${execs:-?} executions in ${secs} s, $cov, $corp, exit $rc, $arts findings, $slow slow inputs"
+    # libFuzzer's timeout is wall time: on a busy machine (or at nice 19) a
+    # slow but finite input can reach it. Each timeout input is run once more
+    # alone, up to 10 minutes, so that a hang can be told from a starved run;
+    # it stays a finding either way.
+    for a in "$build/artifacts/$t"-timeout-*; do
+        [ -f "$a" ] || continue
+        t0=$(date +%s)
+        if "$bin" -timeout=600 -rss_limit_mb=3072 "$a" >/dev/null 2>&1; then
+            echo "fuzz $t: $(basename "$a") ran alone in $(($(date +%s) - t0)) s (a timeout only under load?)"
+        else
+            echo "fuzz $t: $(basename "$a") failed or hung again alone (after $(($(date +%s) - t0)) s)"
+        fi
+    done
     if [ "$rc" -ne 0 ] || [ "$arts" -ne 0 ]; then found=1; fi
 done
 [ "$found" -eq 0 ]
