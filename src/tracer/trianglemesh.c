@@ -305,12 +305,18 @@ static void triangle_frame(const mt_shape *s, uint32_t prim, mt_vec3 frame[3])
     frame[2] = mt_v3((mt_real)n[0], (mt_real)n[1], (mt_real)n[2]);
 }
 
+/* The triangle's frame: kept for a small mesh, else computed into `computed`. */
+static const mt_vec3 *frame_of(const mt_shape *s, uint32_t prim, mt_vec3 computed[3])
+{
+    if (s->tri_frames) return s->tri_frames + 3 * (size_t)prim;
+    triangle_frame(s, prim, computed);
+    return computed;
+}
+
 mt_vec3 mt__triangle_normal(const mt_shape *s, uint32_t prim)
 {
-    mt_vec3 frame[3];
-    if (s->tri_frames) return s->tri_frames[3 * (size_t)prim + 2];
-    triangle_frame(s, prim, frame);
-    return frame[2];
+    mt_vec3 computed[3];
+    return frame_of(s, prim, computed)[2];
 }
 
 mt_status mt__triangle_frames_init(mt_shape *s, mt_error *err)
@@ -329,11 +335,10 @@ void mt__triangle_surface(const mt_shape *s, uint32_t prim, mt_real b1, mt_real 
 {
     const int *v = s->indices + 3 * (size_t)prim;
     mt_vec3 p0 = s->P[v[0]], p1 = s->P[v[1]], p2 = s->P[v[2]], computed[3];
-    const mt_vec3 *frame = s->tri_frames ? s->tri_frames + 3 * (size_t)prim : computed;
+    const mt_vec3 *frame = frame_of(s, prim, computed);
     mt_real uv[3][2], b0 = 1 - b1 - b2;
     mt_diffgeom *dg = &sf->dg;
 
-    if (!s->tri_frames) triangle_frame(s, prim, computed);
     mt__triangle_uvs(s, prim, uv);
     dg->dpdu = frame[0];
     dg->dpdv = frame[1];
