@@ -29,8 +29,17 @@
 #include "materia/cubature.h"
 #include "measured/measured_impl.h"
 
-#define NPHI 32
-#define NZ 16
+/* The fuzzing build (make fuzz) sets a coarser grid: each cell's work has a
+ * floor (one 15 x 15 rule per grid cell, 115,200 evaluations per component at
+ * 32 x 16), and there the code paths matter, not the value. */
+#ifndef MT_RHO_NPHI
+#define MT_RHO_NPHI 32
+#endif
+#ifndef MT_RHO_NZ
+#define MT_RHO_NZ 16
+#endif
+#define NPHI MT_RHO_NPHI
+#define NZ MT_RHO_NZ
 #define NHINT 24 /* a 24 x 24 grid of sampler calls */
 
 typedef struct rho_ctx {

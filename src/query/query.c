@@ -13,6 +13,14 @@
 #include "materia/material.h"
 #include "materia/query.h"
 #include "materia/state.h"
+
+/* rho's relative tolerance (docs/PROTOCOL.md). The fuzzing build
+ * (make fuzz) sets a looser one: there the cubature's code paths matter, not
+ * its sixth digit, and at 1e-6 a glossy rho costs as much as thousands of
+ * other statements. */
+#ifndef MT_QUERY_RHO_TOL
+#define MT_QUERY_RHO_TOL 1e-6
+#endif
 #include "core/alloc.h"
 #include "params/parser_internal.h"
 
@@ -314,7 +322,7 @@ static int query_rho(mt_query *q, const char *args, char *out, size_t size)
     if (!exactly(args, v, 3)) return fail_msg(out, size, "rho: needs wox woy woz");
     mt_error_clear(&err);
     if (!(b = bsdf_here(q, &err))) return fail(out, size, &err);
-    r = mt_bsdf_rho_quad(b, v3(v), MT_BSDF_ALL, 1e-6);
+    r = mt_bsdf_rho_quad(b, v3(v), MT_BSDF_ALL, MT_QUERY_RHO_TOL);
     return answer(out, size, NUM " " NUM " " NUM, (double)r.c[0], (double)r.c[1], (double)r.c[2]);
 }
 
