@@ -29,14 +29,18 @@
 #include "materia/cubature.h"
 #include "measured/measured_impl.h"
 
-/* The fuzzing build (make fuzz) sets a coarser grid: each cell's work has a
- * floor (one 15 x 15 rule per grid cell, 115,200 evaluations per component at
- * 32 x 16), and there the code paths matter, not the value. */
+/* The fuzzing build (make fuzz) sets a coarser grid and no refinement: each
+ * cell's work has a floor (one 15 x 15 rule per grid cell, 115,200
+ * evaluations per component at 32 x 16), and there the code paths matter,
+ * not the value. */
 #ifndef MT_RHO_NPHI
 #define MT_RHO_NPHI 32
 #endif
 #ifndef MT_RHO_NZ
 #define MT_RHO_NZ 16
+#endif
+#ifndef MT_RHO_WORK
+#define MT_RHO_WORK 8 /* the refinement cap (top of the file) */
 #endif
 #define NPHI MT_RHO_NPHI
 #define NZ MT_RHO_NZ
@@ -72,7 +76,7 @@ mt_rgb mt_bxdf_rho_quad(const mt_bxdf *b, mt_vec3 wo, double rel_tol)
     int hits[NPHI][NZ] = {{0}}, nhits = 0;
     double sum[3] = {0, 0, 0}, scale = 0;
     rho_ctx c;
-    long work = mt__bxdf_is_measured(b) ? 1 : 8; /* the refinement cap (above) */
+    long work = mt__bxdf_is_measured(b) ? 1 : MT_RHO_WORK;
     int i, j, k;
     if (b->type & MT_BSDF_SPECULAR) return delta_weight(b, wo);
     c.b = b;

@@ -7,6 +7,14 @@
 # input.
 # usage: run-fuzz.sh BUILD SECONDS TARGET...
 build=$1; secs=$2; shift 2
+# cpu: the user + system CPU seconds of this shell's finished children. The
+# times builtin must run in this shell, not in a command substitution (whose
+# subshell has no children), so it writes to a file.
+child_cpu() {
+    times >"$build/logs/.times"
+    cpu=$(awk 'NR == 2 { n = 0; for (i = 1; i <= 2; ++i) { split($i, a, /[ms]/); n += a[1] * 60 + a[2] }
+                         printf "%.2f", n }' "$build/logs/.times")
+}
 found=0
 mkdir -p "$build/artifacts" "$build/logs" || exit 1
 for t in "$@"; do
@@ -30,16 +38,22 @@ for t in "$@"; do
     echo "fuzz $t: ${execs:-?} executions in ${secs} s, $cov, $corp, exit $rc, $arts findings, $slow slow inputs"
     # libFuzzer's timeout is wall time: on a busy machine (or at nice 19) a
     # slow but finite input can reach it. Each timeout input is run once more
-    # alone, up to 10 minutes, so that a hang can be told from a starved run;
-    # it stays a finding either way.
+    # alone, up to 10 minutes, with its wall and CPU time reported, so that a
+    # hang (CPU time near the wall time, the limit reached again) can be told
+    # from a starved run (seconds of CPU); it stays a finding either way.
     for a in "$build/artifacts/$t"-timeout-*; do
         [ -f "$a" ] || continue
         t0=$(date +%s)
+        child_cpu
+        c0=$cpu
         if "$bin" -timeout=600 -rss_limit_mb=3072 "$a" >/dev/null 2>&1; then
-            echo "fuzz $t: $(basename "$a") ran alone in $(($(date +%s) - t0)) s (a timeout only under load?)"
+            how="ran alone in"
         else
-            echo "fuzz $t: $(basename "$a") failed or hung again alone (after $(($(date +%s) - t0)) s)"
+            how="failed or hung again alone, after"
         fi
+        child_cpu
+        echo "fuzz $t: $(basename "$a") $how $(($(date +%s) - t0)) s of wall time," \
+            "$(echo "$c0 $cpu" | awk '{ printf "%.1f", $2 - $1 }') s of CPU time"
     done
     if [ "$rc" -ne 0 ] || [ "$arts" -ne 0 ]; then found=1; fi
 done

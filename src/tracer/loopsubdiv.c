@@ -440,7 +440,13 @@ static mt_status build_limit(mt_shape *s, sd_mesh *m, mt_error *err)
  * subdivide a few thousand triangles 3 times),
  * checked before anything is allocated so that a parameter cannot make the
  * loader ask for more. */
-#define MAX_TRIANGLES (1 << 22)
+#ifndef MT_LOOPSUBDIV_MAX_TRIANGLES
+#define MT_LOOPSUBDIV_MAX_TRIANGLES (1 << 22)
+#endif
+/* The fuzzing build (make fuzz) sets a lower limit: a few bytes of nlevels
+ * otherwise make inputs of seconds under the sanitizers, which run the same
+ * code as a level or two less. */
+#define MAX_TRIANGLES MT_LOOPSUBDIV_MAX_TRIANGLES
 
 mt_status mt__loopsubdiv_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
 {
