@@ -31,8 +31,8 @@
 
 /* The fuzzing build (make fuzz) sets a coarser grid and no refinement: each
  * cell's work has a floor (one 15 x 15 rule per grid cell, 115,200
- * evaluations per component at 32 x 16), and there the code paths matter,
- * not the value. */
+ * evaluations per component at 32 x 16), refinement multiplies it up to
+ * MT_RHO_WORK times, and there the code paths matter, not the value. */
 #ifndef MT_RHO_NPHI
 #define MT_RHO_NPHI 32
 #endif

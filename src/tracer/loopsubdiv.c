@@ -439,14 +439,12 @@ static mt_status build_limit(mt_shape *s, sd_mesh *m, mt_error *err)
  * gigabyte of vertex and face records while refining (pbrt-v2's scenes
  * subdivide a few thousand triangles 3 times),
  * checked before anything is allocated so that a parameter cannot make the
- * loader ask for more. */
+ * loader ask for more. The fuzzing build (make fuzz) sets a lower limit: a
+ * few bytes of nlevels otherwise make inputs of seconds under the
+ * sanitizers, which run the same code as a level or two less. */
 #ifndef MT_LOOPSUBDIV_MAX_TRIANGLES
 #define MT_LOOPSUBDIV_MAX_TRIANGLES (1 << 22)
 #endif
-/* The fuzzing build (make fuzz) sets a lower limit: a few bytes of nlevels
- * otherwise make inputs of seconds under the sanitizers, which run the same
- * code as a level or two less. */
-#define MAX_TRIANGLES MT_LOOPSUBDIV_MAX_TRIANGLES
 
 mt_status mt__loopsubdiv_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
 {
@@ -478,12 +476,12 @@ mt_status mt__loopsubdiv_init(mt_shape *s, const mt_paramset *ps, mt_error *err)
     }
     for (faces = nvi / 3, level = 0; level < nlevels; ++level) {
         faces *= 4;
-        if (faces > MAX_TRIANGLES) {
+        if (faces > MT_LOOPSUBDIV_MAX_TRIANGLES) {
             mt__locate_param(err, ps, "nlevels");
             return mt_error_param(err, MT_ERR_LIMIT, "nlevels",
                                   "%d levels of %d triangles make more than %d triangles "
                                   "(materia's limit for a subdivision surface)",
-                                  nlevels, nvi / 3, MAX_TRIANGLES);
+                                  nlevels, nvi / 3, MT_LOOPSUBDIV_MAX_TRIANGLES);
         }
     }
     memset(&m, 0, sizeof m);
