@@ -29,9 +29,11 @@
 #include "materia/cubature.h"
 #include "measured/measured_impl.h"
 
-/* The fuzzing build (make fuzz) sets a coarser grid and no refinement: each
- * cell's work has a floor (one 15 x 15 rule per grid cell, 115,200
- * evaluations per component at 32 x 16), refinement multiplies it up to
+/* The fuzzing build (make fuzz) sets a coarser grid, no refinement and no
+ * finer start in the cells the sampler points at: each cell's work has a
+ * floor (one 15 x 15 rule per grid cell, 115,200 evaluations per component
+ * at 32 x 16), a cell holding a peak starts on a grid up to MT_RHO_MAX_GRID
+ * on a side (up to 64 times that floor), refinement multiplies it up to
  * MT_RHO_WORK times, and there the code paths matter, not the value. */
 #ifndef MT_RHO_NPHI
 #define MT_RHO_NPHI 32
@@ -41,6 +43,9 @@
 #endif
 #ifndef MT_RHO_WORK
 #define MT_RHO_WORK 8 /* the refinement cap (top of the file) */
+#endif
+#ifndef MT_RHO_MAX_GRID
+#define MT_RHO_MAX_GRID 8 /* mt_cubature_grid's largest: no cap */
 #endif
 #define NPHI MT_RHO_NPHI
 #define NZ MT_RHO_NZ
@@ -102,6 +107,7 @@ mt_rgb mt_bxdf_rho_quad(const mt_bxdf *b, mt_vec3 wo, double rel_tol)
             mt_cubature_result r;
             double p0 = 2 * 3.14159265358979323846 * i / NPHI, p1 = 2 * 3.14159265358979323846 * (i + 1) / NPHI;
             int sub = nhits ? mt_cubature_grid((double)hits[i][j] * NPHI * NZ / nhits) : 1;
+            if (sub > MT_RHO_MAX_GRID) sub = MT_RHO_MAX_GRID;
             if (mt_cubature(rho_integrand, &c, 3, p0, p1, (double)j / NZ, (double)(j + 1) / NZ, sub,
                             sub, rel_tol, rel_tol * fmax(scale, 1e-6) / (NPHI * NZ),
                             225L * work * sub * sub, &r,
