@@ -378,7 +378,7 @@ FUZZ_BUILD   ?= build/fuzz
 # fewer comparisons traced, a cheaper rho and a lower loopsubdiv limit:
 # docs/FUZZING.md, "What the fuzzing build changes"
 FUZZ_CFLAGS  ?= -fsanitize-coverage-ignorelist=fuzz/coverage-ignore.txt -DMT_QUERY_RHO_TOL=1e-3 \
-               -DMT_RHO_NPHI=8 -DMT_RHO_NZ=4 -DMT_RHO_WORK=1 -DMT_RHO_MAX_GRID=1 -DMT_LOOPSUBDIV_MAX_TRIANGLES=16384
+               -DMT_RHO_NPHI=4 -DMT_RHO_NZ=2 -DMT_RHO_WORK=1 -DMT_RHO_MAX_GRID=1 -DMT_LOOPSUBDIV_MAX_TRIANGLES=16384
 fuzz:
 	$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) SANITIZE=address,undefined \
 	    LTO=no CFLAGS="-O1 -g -fsanitize=fuzzer-no-link $(FUZZ_CFLAGS)" $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/libfuzzer/fuzz-%)
