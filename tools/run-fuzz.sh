@@ -29,8 +29,11 @@ for t in "$@"; do
         ${FUZZ_FLAGS:-} "$build/work/$t" "fuzz/corpus/$t" >"$log" 2>&1
     rc=$?
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    # under -fork=N the parent prints no final stats, only "#RUNS: cov: ..."
+    # lines, and its corpus size without the bytes
+    [ -n "$execs" ] || execs=$(sed -n 's/^#\([0-9]*\): cov:.*/\1/p' "$log" | tail -1)
     cov=$(grep -o 'cov: [0-9]* ft: [0-9]*' "$log" | tail -1)
-    corp=$(grep -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1)
+    corp=$(grep -oE 'corp: [0-9]+(/[0-9]+[a-zA-Z]*)?' "$log" | tail -1)
     # crash-, leak-, timeout- and oom- inputs are findings; slow-unit- ones
     # (over 10 s, e.g. rho of a glossy material under the sanitizers) are not
     arts=$(ls "$build/artifacts" | grep -v "^$t-slow-unit-" | grep -c "^$t-")
