@@ -30,7 +30,8 @@ for t in "$@"; do
     rc=$?
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
     # under -fork=N the parent prints no final stats, only "#RUNS: cov: ..."
-    # lines, and its corpus size without the bytes
+    # lines (its cov: is its own measure, not edges) and its corpus size
+    # without the bytes
     [ -n "$execs" ] || execs=$(sed -n 's/^#\([0-9]*\): cov:.*/\1/p' "$log" | tail -1)
     cov=$(grep -o 'cov: [0-9]* ft: [0-9]*' "$log" | tail -1)
     corp=$(grep -oE 'corp: [0-9]+(/[0-9]+[a-zA-Z]*)?' "$log" | tail -1)
