@@ -237,6 +237,52 @@ static void translucent(void)
         near(e[0], d[0], "translucent index ignored");
 }
 
+/* A mix counts the lobes its materials can add: a constant black scale
+ * adds none anywhere, so two default ubers (4 lobes) are a valid mix; two
+ * whose opacity and Kr, Kt are textures could reach 10, past the BSDF's 8
+ * (erratum mix-overflow: pbrt-v2 writes past its array), and are refused. */
+static void mix_bound(void)
+{
+    double e[4];
+    char out[512];
+    if (ask("MakeNamedMaterial \"u\" \"string type\" [\"uber\"]", NULL, 0) &&
+        eval_of("Material \"mix\" \"string namedmaterial1\" \"u\" \"string namedmaterial2\" \"u\"", e))
+        near(e[3] > 0, 1, "mix of two default ubers: made (4 lobes)");
+    if (!ask("Texture \"tk\" \"color\" \"uv\"", NULL, 0) ||
+        !ask("MakeNamedMaterial \"ut\" \"string type\" [\"uber\"] \"texture Kr\" \"tk\" \"texture Kt\" \"tk\" "
+             "\"texture opacity\" \"tk\"", NULL, 0))
+        return;
+    mt_query_line(q, "Material \"mix\" \"string namedmaterial1\" \"ut\" \"string namedmaterial2\" \"ut\"", out,
+                  sizeof out);
+    {
+        char name[160];
+        name_of(name, sizeof name, "mix of two textured ubers (up to 10 lobes): an error");
+        t_check(!strncmp(out, "error", 5) && strstr(out, "10 BxDFs"), name, "%s", out);
+    }
+}
+
+/* No "bumpmap", no bump mapping (pbrt-v2 commits bab4b9b, 67a83eb): the
+ * shading normal stays the shape's even where it faces away from the
+ * geometric normal. The 2012 source bump-mapped every material with a
+ * constant 0, which turned it to the geometric normal's side: shinymetal's
+ * shading normal would be -z here, and glass would see wo from inside. */
+static void no_bump(void)
+{
+    double sh[9], s[8];
+    char name[160];
+    if (!ask("at ng 0 0 -1", NULL, 0)) return;
+    if (ask("Material \"shinymetal\"", NULL, 0) && ask("shading", sh, 9)) {
+        name_of(name, sizeof name, "shinymetal without a bump map: the shading normal as given, facing away from ng");
+        t_check(sh[2] == 1 && sh[0] == 0 && sh[1] == 0, name, "n %g %g %g", sh[0], sh[1], sh[2]);
+    }
+    /* glass, uc 0.7: the transmission, entering from +z with eta 1/1.5 */
+    if (sample_of("Material \"glass\"", 0.7, s)) {
+        near(s[1], -0.4, "glass without a bump map, ng facing away: wo enters (y of wi)");
+        near(s[2], -sqrt(1 - 0.16), "glass without a bump map, ng facing away: wo enters (z of wi)");
+    }
+    ask("at ng 0 0 1", NULL, 0);
+}
+
 /* mix: every component of both, scaled, even by 0. */
 static void mix(void)
 {
@@ -280,6 +326,8 @@ int main(void)
             specular();
             translucent();
             mix();
+            mix_bound();
+            no_bump();
         }
         mt_query_destroy(q);
     }
