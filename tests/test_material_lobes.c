@@ -283,6 +283,51 @@ static void no_bump(void)
     ask("at ng 0 0 1", NULL, 0);
 }
 
+/* A dpdu not perpendicular to the normal: pbrt-v2's frame is sn =
+ * normalize(dpdu), tn = nn x sn (erratum bsdf-frame), not orthonormal, so
+ * local directions have different lengths, and Microfacet::f takes
+ * Dot(wi, wh) for the Fresnel term and AbsDot(wo, wh) in G, which then
+ * differ (|wo + wi| / 2, their common value for directions of one length,
+ * is below the coat's critical cosine here, Dot(wi, wh) above it: F = 1
+ * against 0.05). Expected f from pbrt-v2's formulas: plastic's coat alone
+ * (Kd 0), Ks 0.5, Blinn exponent 10, FresnelDielectric(1.5, 1). */
+static void oblique_frame(void)
+{
+    static const double sn[3] = {0.8, 0, 0.6}, tn[3] = {0, 0.8, 0}, wow[3] = {-0.9, 0, 0.436},
+                        wiw[3] = {0.9, 0, 0.436};
+    double wo[3], wi[3], h[3], l, e[4], D, G, cosh_i, cosh_o, want, sym;
+    mt_fresnel fr = mt_fresnel_dielectric(1.5f, 1);
+    int k;
+    char name[160];
+    if (strcmp(mode_name, "pbrt-v2") != 0) return; /* corrected mode's frame is orthonormal */
+    {
+        wo[0] = sn[0] * wow[0] + sn[1] * wow[1] + sn[2] * wow[2];
+        wo[1] = tn[0] * wow[0] + tn[1] * wow[1] + tn[2] * wow[2];
+        wo[2] = wow[2];
+        wi[0] = sn[0] * wiw[0] + sn[1] * wiw[1] + sn[2] * wiw[2];
+        wi[1] = tn[0] * wiw[0] + tn[1] * wiw[1] + tn[2] * wiw[2];
+        wi[2] = wiw[2];
+    }
+    for (k = 0; k < 3; k++) h[k] = wo[k] + wi[k];
+    l = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    for (k = 0; k < 3; k++) h[k] /= l;
+    cosh_i = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2];
+    cosh_o = fabs(wo[0] * h[0] + wo[1] * h[1] + wo[2] * h[2]);
+    D = 12 / (2 * MT_PI) * pow(h[2], 10);
+    G = fmin(1, fmin(2 * h[2] * wo[2] / cosh_o, 2 * h[2] * wi[2] / cosh_o));
+    want = 0.5 * D * G * mt_fresnel_evaluate(&fr, (mt_real)cosh_i).c[0] / (4 * wi[2] * wo[2]);
+    sym = 0.5 * D * fmin(1, fmin(2 * h[2] * wo[2] / (l / 2), 2 * h[2] * wi[2] / (l / 2))) *
+          mt_fresnel_evaluate(&fr, (mt_real)(l / 2)).c[0] / (4 * wi[2] * wo[2]);
+    if (ask("at dpdu 0.8 0 0.6", NULL, 0) &&
+        eval_of("Material \"plastic\" \"rgb Kd\" [0 0 0] \"rgb Ks\" [0.5 0.5 0.5]", e) &&
+        ask("eval -0.9 0 0.436 0.9 0 0.436", e, 4)) {
+        near(e[0], want, "oblique dpdu: the coat's f with pbrt-v2's Dot(wi, wh) and AbsDot(wo, wh)");
+        name_of(name, sizeof name, "oblique dpdu: the two cosines differ enough to tell the formulas apart");
+        t_check(fabs(sym - want) > 0.01 * want, name, "%g vs %g", sym, want);
+    }
+    ask("at dpdu 1 0 0", NULL, 0);
+}
+
 /* mix: every component of both, scaled, even by 0. */
 static void mix(void)
 {
@@ -328,6 +373,7 @@ int main(void)
             mix();
             mix_bound();
             no_bump();
+            oblique_frame();
         }
         mt_query_destroy(q);
     }
