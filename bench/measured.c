@@ -131,8 +131,8 @@ int main(void)
     if (shared) printf("BENCH brdf_file_read %.1f ms\n", 1e3 * t_brdf);
     printf("BENCH merl_file_read %.1f ms\n", 1e3 * t_read);
     printf("BENCH merl_tabulate_plastic %.1f ms\n", 1e3 * t_tab);
-    mt_measured_release(irr);
-    mt_measured_release(merl);
+    mt_measured_destroy(irr);
+    mt_measured_destroy(merl);
     mt_measured_cache_clear();
     free(values);
     mt_arena_destroy(a);

@@ -61,7 +61,7 @@ static void timings(void)
     mt_rng rng;
     double sink = 0;
     int i, x, y;
-    mt_image_alloc(&img, N, N, 3, NULL);
+    mt_image_create(&img, N, N, 3, NULL);
     for (y = 0; y < N; y++)
         for (x = 0; x < N; x++) {
             double u = (x + 0.5) / N, v = (y + 0.5) / N;
@@ -100,7 +100,7 @@ static void timings(void)
     mt_mipmap_destroy(tri);
     mt_mipmap_destroy(tri_pbrt);
     mt_mipmap_destroy(ewa);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     free(a);
 }
 
@@ -126,7 +126,7 @@ static void errors(const char *name, t_pattern pat)
         printf("BENCH mipmap_err_%s_%s_max %.3e abs\n", name, keys[f], mx);
     }
     mt_mipmap_destroy(m);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
 }
 
 int main(void)

@@ -47,7 +47,7 @@ static double run(const mt_scene *s, int spp, int threads, double *wall, double 
     o.threads = threads;
     if (mt_scene_render(s, &o, &img, NULL, &st, &err) != MT_OK) return 0;
     c1 = now(CLOCK_PROCESS_CPUTIME_ID);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     *wall = st.seconds;
     *cpu = c1 - c0;
     return st.samples;

@@ -87,11 +87,11 @@ int main(void)
         for (i = 0; i < (int)(sizeof all / sizeof all[0]); ++i) {
             if (!all[i].t) continue;
             bench(all[i].name, all[i].t);
-            mt_texture_release(all[i].t);
+            mt_texture_destroy(all[i].t);
         }
-        mt_texture_release(a);
-        mt_texture_release(b);
-        mt_texture_release(amount);
+        mt_texture_destroy(a);
+        mt_texture_destroy(b);
+        mt_texture_destroy(amount);
     }
     /* Perlin's noise itself, the unit of the noise textures' cost */
     {

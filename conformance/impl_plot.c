@@ -48,7 +48,7 @@ int cf_impl_plot(const char *path, const char *title, const char *subtitle, cons
     labels[1] = "samples";
     labels[2] = "|o - e| / sqrt(e)";
     for (k = 0; k < 3; ++k)
-        if ((st = mt_image_alloc(&maps[k], cfg->nphi, cfg->nz, 1, err))) goto done;
+        if ((st = mt_image_create(&maps[k], cfg->nphi, cfg->nz, 1, err))) goto done;
     for (c = 0; c < cfg->nphi * cfg->nz; ++c) {
         double e = pdfc[c] * n, o = (double)counts[c], d = e > 0 ? (o - e) / sqrt(e) : (o > 0 ? 1e3 : 0);
         size_t at;
@@ -73,7 +73,7 @@ int cf_impl_plot(const char *path, const char *title, const char *subtitle, cons
     if (mt__text_width(title, 1) + 2 * GAP > w) w = mt__text_width(title, 1) + 2 * GAP;
     if (mt__text_width(subtitle, 1) + 2 * GAP > w) w = mt__text_width(subtitle, 1) + 2 * GAP;
     h = 3 * LINE + panels[0].height + LINE + GAP;
-    if ((st = mt_image_alloc(&out, w, h, 3, err))) goto done;
+    if ((st = mt_image_create(&out, w, h, 3, err))) goto done;
     fill(&out, grey);
     mt__draw_text(&out, GAP, 4, title, 1, white);
     mt__draw_text(&out, GAP, 4 + LINE, subtitle, 1, white);
@@ -87,9 +87,9 @@ int cf_impl_plot(const char *path, const char *title, const char *subtitle, cons
     st = mt_image_write(path, &out, NULL, 0, err);
 done:
     for (k = 0; k < 3; ++k) {
-        mt_image_free(&maps[k]);
-        mt_image_free(&panels[k]);
+        mt_image_destroy(&maps[k]);
+        mt_image_destroy(&panels[k]);
     }
-    mt_image_free(&out);
+    mt_image_destroy(&out);
     return st ? -1 : 0;
 }

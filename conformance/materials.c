@@ -38,7 +38,7 @@ mt_status cf_build_material(const cf_subject *s, mt_arena *a, mt_mode mode, mt_b
     } else if (!st) {
         st = err->status;
     }
-    mt_material_release(m);
+    mt_material_destroy(m);
     mt_state_destroy(state);
     return st;
 }

@@ -14,7 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (!path) return 0;
     for (k = 0; k < 2; ++k)
         if (mt_image_read_mode(path, k ? MT_MODE_CORRECTED : MT_MODE_PBRT_V2, &img, NULL) == MT_OK)
-            mt_image_free(&img);
+            mt_image_destroy(&img);
     return 0;
 }
 

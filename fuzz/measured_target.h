@@ -14,7 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (!path) return 0;
     m = mt_measured_load(path, NULL);
     fz_measured_eval(m);
-    mt_measured_release(m);
+    mt_measured_destroy(m);
     mt_measured_cache_clear(); /* the next input has the same name */
     return 0;
 }

@@ -90,10 +90,10 @@ static int write_inputs(void)
     int i;
     char brdf[2048];
     size_t n = 0;
-    if (mt_image_alloc(&img, 4, 4, 3, NULL) != MT_OK) return 0;
+    if (mt_image_create(&img, 4, 4, 3, NULL) != MT_OK) return 0;
     for (i = 0; i < 48; ++i) img.data[i] = (float)(i % 5) / 4.f;
     i = mt_image_write(t_tmp_path("tex.png"), &img, NULL, 0, NULL) == MT_OK;
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     n += (size_t)snprintf(brdf, sizeof brdf, "2\n450 650\n");
     for (i = 0; i < 20 && n < sizeof brdf - 64; ++i)
         n += (size_t)snprintf(brdf + n, sizeof brdf - n, "%.3f %.3f %.3f %.3f %.3f %.3f\n",
@@ -167,8 +167,8 @@ static void test_render(const char *dir)
         if (st == MT_OK) {
             same = img.width == want.width && img.height == want.height &&
                    memcmp(img.data, want.data, sizeof(float) * 3 * (size_t)img.width * (size_t)img.height) == 0;
-            mt_image_free(&img);
-            mt_image_free(&var);
+            mt_image_destroy(&img);
+            mt_image_destroy(&var);
             break;
         }
         runs++;
@@ -181,7 +181,7 @@ static void test_render(const char *dir)
             "same image",
             "%d attempts, %d wrong, image %s", runs, wrong, same ? "the same" : "different");
     printf("  render: %d allocations, each made to fail\n", runs);
-    mt_image_free(&want);
+    mt_image_destroy(&want);
     mt_scene_destroy(s);
     clear_caches();
 }

@@ -207,10 +207,10 @@ static void special_cases(const mt_texture *d)
         }
         t_check(sc && same, "bump: a constant displacement gives the bits of the whole computation",
                 "%s", sc ? "the bumped geometry differs" : err.message);
-        mt_texture_release(sc);
-        mt_texture_release(one);
+        mt_texture_destroy(sc);
+        mt_texture_destroy(one);
     }
-    mt_texture_release(c);
+    mt_texture_destroy(c);
 }
 
 /* pbrt-v2's bumped frames at real sphere intersections (bump-values.csv);
@@ -250,7 +250,7 @@ static void reference_values(void)
     fp = fopen(path, "r");
     if (!fp) {
         t_fail("bump: pbrt-v2's bumped frames", "cannot open %s", path);
-        mt_texture_release(b);
+        mt_texture_destroy(b);
         return;
     }
     while (fgets(line, sizeof line, fp)) {
@@ -288,7 +288,7 @@ static void reference_values(void)
             "%d of %d rows differ, worst %.3g", bad, rows, worst);
     printf("  bump-values.csv: %d rows (%d ReverseOrientation), max |difference| %.3g\n", rows,
            flipped, worst);
-    mt_texture_release(b);
+    mt_texture_destroy(b);
 }
 
 int main(void)
@@ -298,6 +298,6 @@ int main(void)
     convergence(d);
     special_cases(d);
     reference_values();
-    mt_texture_release(d);
+    mt_texture_destroy(d);
     return t_status();
 }

@@ -342,7 +342,7 @@ static void test_renders(void)
         t_fail("dipole render", "%s", err.message);
     } else {
         t_check(t_images_identical(&a, &b), "dipolesubsurface render: bit-identical on 1 and 2 threads", "images differ");
-        mt_image_free(&b);
+        mt_image_destroy(&b);
     }
     t_check(sg.deposit > 0 && sg.irradiance > 0 && sg.last_ok && sg.count == st.points && st.points > 100,
             "dipolesubsurface progress: the deposition and the irradiance pass, with the point count",
@@ -350,7 +350,7 @@ static void test_renders(void)
     for (i = 0; i < (size_t)a.width * a.height * 3; ++i)
         if (!isfinite(a.data[i]) || a.data[i] < 0) bad++;
     t_check(bad == 0, "dipolesubsurface render: finite, non-negative", "%zu bad values", bad);
-    mt_image_free(&a);
+    mt_image_destroy(&a);
     mt_scene_destroy(s);
 
     /* eta 5: pbrt-v2's Fdr > 1 makes the subsurface term negative; never a NaN */
@@ -365,7 +365,7 @@ static void test_renders(void)
             for (i = 0; i < (size_t)a.width * a.height * 3; ++i)
                 if (!isfinite(a.data[i])) bad++;
             t_check(bad == 0, "fdr-range pbrt-v2 mode, index 5: no NaN or infinity", "%zu bad values", bad);
-            mt_image_free(&a);
+            mt_image_destroy(&a);
         } else {
             t_fail("fdr-range render", "%s", err.message);
         }
@@ -383,8 +383,8 @@ static void test_renders(void)
             mt_scene *s1 = t_scene(t1, NULL, &nwarn, &err), *s2 = t_scene(t2, NULL, NULL, &err);
             if (s1 && s2 && t_render(s1, 4, 2, 1, &a, NULL, &err) == MT_OK && t_render(s2, 4, 2, 1, &b, NULL, &err) == MT_OK) {
                 t_check(t_images_identical(&a, &b), "dipolesubsurface without BSSRDF: the directlighting image", "images differ");
-                mt_image_free(&a);
-                mt_image_free(&b);
+                mt_image_destroy(&a);
+                mt_image_destroy(&b);
             } else {
                 t_fail("dipolesubsurface without BSSRDF", "%s", err.message);
             }
@@ -424,7 +424,7 @@ static void test_points_file(void)
         t_fail("points file: read and rendered", "%s", err.message);
     } else {
         t_check(st.points == 3, "points file: its 3 points are the irradiance points", "%ld points", st.points);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     mt_scene_destroy(s);
     {

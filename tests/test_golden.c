@@ -167,7 +167,7 @@ static int dipole_compare(const char *name, const char *text, const char *dir, m
                          "central box t %.2f %.2f %.2f",
                  worst, worst_j, gs->m, m, thr, gs->K - 1, exact_bad, tj[gs->m - 3], tj[gs->m - 2], tj[gs->m - 1]);
     }
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     mt_scene_destroy(s);
     return r;
 }
@@ -226,14 +226,14 @@ static int render_and_compare(const char *name, const char *text, const char *di
         } else {
             snprintf(why, n, "%s", err.message);
         }
-        mt_image_free(&img);
-        mt_image_free(&var);
+        mt_image_destroy(&img);
+        mt_image_destroy(&var);
     } else {
         snprintf(why, n, "%s", err.message);
     }
     mt_scene_destroy(s);
-    mt_image_free(&gold);
-    mt_image_free(&gvar);
+    mt_image_destroy(&gold);
+    mt_image_destroy(&gvar);
     return r;
 }
 

@@ -121,11 +121,11 @@ static void test_exr_half(void)
     const char *f = t_tmp_path("float.exr"), *u = t_tmp_path("uint.exr");
     mt_image src, a, b, c;
     int k, ok, bad;
-    mt_image_alloc(&src, 4, 2, 4, NULL);
+    mt_image_create(&src, 4, 2, 4, NULL);
     for (k = 0; k < 32; k++) src.data[k] = tricky[k];
     if (!write_exr(f, &src, EXR_PIXEL_FLOAT, NULL, 0, 0)) {
         t_fail("exr-half: setup", "cannot write the float EXR");
-        mt_image_free(&src);
+        mt_image_destroy(&src);
         return;
     }
     ok = read_mode(f, V2, &a) && read_mode(f, FIXED, &b);
@@ -145,8 +145,8 @@ static void test_exr_half(void)
             "an infinite value");
     bad = compare(&b, &src, 4, identity, 1);
     t_check(bad == 0, "exr-half: corrected mode reads the stored floats", "%d of 32 differ", bad);
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     /* each bit alone: only exr-half rounds */
     ok = read_mode(f, FIXED & ~MT_FIX_EXR_HALF, &a) && read_mode(f, V2 | MT_FIX_EXR_HALF, &b) &&
          mt_image_read(f, &c, NULL) == MT_OK;
@@ -155,14 +155,14 @@ static void test_exr_half(void)
             "exr-half: the bit alone rounds (corrected without it) and keeps (pbrt-v2 with it); "
             "mt_image_read keeps the stored values",
             "values differ");
-    mt_image_free(&a);
-    mt_image_free(&b);
-    mt_image_free(&c);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
+    mt_image_destroy(&c);
     /* uint channels: OpenEXR's uintToHalf */
     {
         static const float uv[] = {0, 1, 2049, 2051, 65504, 65505, 70000, 4294967295.f, 3, 7, 11, 13};
         mt_image ui;
-        mt_image_alloc(&ui, 2, 2, 3, NULL);
+        mt_image_create(&ui, 2, 2, 3, NULL);
         for (k = 0; k < 12; k++) ui.data[k] = uv[k];
         ok = write_exr(u, &ui, EXR_PIXEL_UINT, NULL, 0, 0) && read_mode(u, V2, &a) &&
              read_mode(u, FIXED, &b);
@@ -171,9 +171,9 @@ static void test_exr_half(void)
                 "exr-half: uint channels become half in pbrt-v2 mode (2049 -> 2048, 2^32-1 -> "
                 "65504), exact in corrected mode",
                 "values differ");
-        mt_image_free(&a);
-        mt_image_free(&b);
-        mt_image_free(&ui);
+        mt_image_destroy(&a);
+        mt_image_destroy(&b);
+        mt_image_destroy(&ui);
     }
     /* the size of the erratum over the range where half is normal */
     {
@@ -182,7 +182,7 @@ static void test_exr_half(void)
         double worst = 0, sum = 0;
         long changed = 0;
         unsigned s = 12345u;
-        mt_image_alloc(&big, W, H, 3, NULL);
+        mt_image_create(&big, W, H, 3, NULL);
         for (k = 0; k < W * H * 3; k++) {
             s = s * 1664525u + 1013904223u;
             big.data[k] = (float)ldexp(1 + (s >> 8) / 16777216.0, -14 + k % 30) * (k % 7 ? 1 : -1);
@@ -209,10 +209,10 @@ static void test_exr_half(void)
                     worst, changed, W * H * 3);
         else
             t_fail("exr-half: a float EXR texture keeps its values", "pbrt-v2 mode changed nothing");
-        mt_image_free(&a);
-        mt_image_free(&big);
+        mt_image_destroy(&a);
+        mt_image_destroy(&big);
     }
-    mt_image_free(&src);
+    mt_image_destroy(&src);
 }
 
 /* ---- exr-missing-channels ------------------------------------------- */
@@ -227,9 +227,9 @@ static void test_exr_missing(void)
     mt_image gray, three, four, a, b;
     mt_error err;
     int k, ok;
-    mt_image_alloc(&gray, 3, 2, 1, NULL);
-    mt_image_alloc(&three, 3, 2, 3, NULL);
-    mt_image_alloc(&four, 3, 2, 4, NULL);
+    mt_image_create(&gray, 3, 2, 1, NULL);
+    mt_image_create(&three, 3, 2, 3, NULL);
+    mt_image_create(&four, 3, 2, 4, NULL);
     for (k = 0; k < 6; k++) gray.data[k] = 0.125f * (float)(k + 1);
     for (k = 0; k < 18; k++) three.data[k] = 0.0625f * (float)(k + 1);
     for (k = 0; k < 24; k++) four.data[k] = 0.03125f * (float)(k + 1);
@@ -239,8 +239,8 @@ static void test_exr_missing(void)
     t_check(ok && compare(&a, &gray, 1, identity, 0) == 0 && compare(&b, &gray, 1, identity, 0) == 0,
             "exr-missing-channels: a Y-only EXR is gray in both modes (pbrt-v2 e6f6334)",
             "values differ");
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     /* Y and A: gray RGBA in both modes */
     ok = write_exr(ya, &three, EXR_PIXEL_HALF, y_a, 0, 0) && read_mode(ya, V2, &a) &&
          read_mode(ya, FIXED, &b);
@@ -248,8 +248,8 @@ static void test_exr_missing(void)
                 a.data[2] == three.data[0] && a.data[3] == three.data[1] &&
                 b.data[0] == three.data[0] && b.data[2] == three.data[0] && b.data[3] == three.data[1],
             "exr-missing-channels: Y and A read gray RGBA in both modes", "wrong");
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     /* Y beside R, G, B: RgbaInputFile takes Y (gray) in pbrt-v2 mode; the
      * colour channels corrected */
     ok = write_exr(yrgb, &four, EXR_PIXEL_HALF, y_rgb, 0, 0) && read_mode(yrgb, V2, &a) &&
@@ -266,21 +266,21 @@ static void test_exr_missing(void)
                 "RgbaInputFile prefers Y): erratum exr-missing-channels, fixed by "
                 "MT_FIX_EXR_MISSING_CHANNELS",
                 (double)a.data[0], (double)b.data[0], (double)b.data[1], (double)b.data[2]);
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     /* each bit alone */
     ok = read_mode(yrgb, FIXED & ~MT_FIX_EXR_MISSING_CHANNELS, &a) &&
          read_mode(yrgb, V2 | MT_FIX_EXR_MISSING_CHANNELS, &b);
     t_check(ok && a.channels == 1 && b.channels == 3,
             "exr-missing-channels: the bit alone decides Y or R, G, B", "wrong");
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     /* no colour channel at all: black in pbrt-v2 mode, an error corrected */
     ok = write_exr(z, &three, EXR_PIXEL_FLOAT, z_only, 0, 0) && read_mode(z, V2, &a);
     t_check(ok && a.channels == 3 && a.data[0] == 0 && a.data[17] == 0,
             "exr-missing-channels: a file with no R, G, B or Y reads black in pbrt-v2 mode",
             "not black");
-    mt_image_free(&a);
+    mt_image_destroy(&a);
     mt_error_clear(&err);
     t_check(mt_image_read_mode(z, FIXED, &b, &err) == MT_ERR_UNSUPPORTED &&
                 strstr(err.message, "z.exr") != NULL,
@@ -292,17 +292,17 @@ static void test_exr_missing(void)
     t_check(ok && a.channels == 3 && b.channels == 3 && a.data[0] == three.data[0] &&
                 b.data[0] == three.data[0] && a.data[1] == 0 && b.data[2] == 0,
             "exr-missing-channels: an R-only file is (R, 0, 0) in both modes", "wrong");
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     /* luminance-chroma files, which RgbaInputFile converts: an error here */
     mt_error_clear(&err);
     t_check(write_exr(yc, &three, EXR_PIXEL_HALF, y_ry_by, 0, 0) &&
                 mt_image_read_mode(yc, V2, &b, &err) == MT_ERR_UNSUPPORTED &&
                 strstr(err.message, "yc.exr") && strstr(err.message, "RY"),
             "exr: a luminance-chroma file (Y, RY, BY) is an error naming the file", "%s", err.message);
-    mt_image_free(&gray);
-    mt_image_free(&three);
-    mt_image_free(&four);
+    mt_image_destroy(&gray);
+    mt_image_destroy(&three);
+    mt_image_destroy(&four);
 }
 
 /* ---- pfm-rows --------------------------------------------------------- */
@@ -330,7 +330,7 @@ static void test_pfm_rows(void)
     int k, x, y, ok;
     /* 3 x 4 RGB, every row distinct; materia's writer stores rows bottom to
      * top, as pbrt-v2's WriteImagePFM does */
-    mt_image_alloc(&src, 3, 4, 3, NULL);
+    mt_image_create(&src, 3, 4, 3, NULL);
     for (k = 0; k < 36; k++) src.data[k] = 0.1f * (float)(k / 9 + 1) + 0.01f * (float)(k % 9);
     ok = mt_image_write(p, &src, NULL, 0, &err) == MT_OK && read_mode(p, V2, &a) &&
          read_mode(p, FIXED, &b);
@@ -346,20 +346,20 @@ static void test_pfm_rows(void)
                 "row %d-y (every row moves but the middle one of an odd height): erratum "
                 "pfm-rows, fixed by MT_FIX_PFM_ROWS",
                 src.height, src.height - 1);
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     ok = read_mode(p, FIXED & ~MT_FIX_PFM_ROWS, &a) && read_mode(p, V2 | MT_FIX_PFM_ROWS, &b);
     t_check(ok && rows_flipped(&a, &src, 1) && compare(&b, &src, 3, identity, 0) == 0,
             "pfm-rows: the bit alone decides the row order", "wrong");
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
     /* "Pf", little endian, scale -2.5: one gray channel, values times 2.5
      * (ReadImagePFM multiplies by |scale| when it is not 1), in both modes */
     {
         unsigned char file[64 + 4 * 6];
         int n = snprintf((char *)file, 64, "Pf\n2 3\n-2.5\n");
         FILE *fp;
-        mt_image_alloc(&flip, 2, 3, 1, NULL);
+        mt_image_create(&flip, 2, 3, 1, NULL);
         for (y = 0; y < 3; y++)
             for (x = 0; x < 2; x++) {
                 float v = 0.25f * (float)(y * 2 + x + 1);
@@ -379,11 +379,11 @@ static void test_pfm_rows(void)
                 "pfm-rows: a \"Pf\" file is one gray channel times |scale| in both modes, "
                 "flipped in pbrt-v2 mode",
                 "wrong");
-        mt_image_free(&a);
-        mt_image_free(&b);
-        mt_image_free(&flip);
+        mt_image_destroy(&a);
+        mt_image_destroy(&b);
+        mt_image_destroy(&flip);
     }
-    mt_image_free(&src);
+    mt_image_destroy(&src);
 }
 
 /* ---- fixed in both modes: the data window ---------------------------- */
@@ -393,7 +393,7 @@ static void test_data_window(void)
     const char *w = t_tmp_path("window.exr");
     mt_image src, a, b;
     int k, ok;
-    mt_image_alloc(&src, 5, 3, 3, NULL);
+    mt_image_create(&src, 5, 3, 3, NULL);
     for (k = 0; k < 45; k++) src.data[k] = 0.125f * (float)k; /* exact in half */
     ok = write_exr(w, &src, EXR_PIXEL_FLOAT, NULL, -3, 7) && read_mode(w, V2, &a) &&
          read_mode(w, FIXED, &b);
@@ -401,9 +401,9 @@ static void test_data_window(void)
             "exr-data-window: a data window at (-3, 7) is the image in both modes (pbrt-v2 "
             "writes outside its buffer)",
             "values differ");
-    mt_image_free(&a);
-    mt_image_free(&b);
-    mt_image_free(&src);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
+    mt_image_destroy(&src);
 }
 
 /* ---- the image-map texture through a query session -------------------- */
@@ -444,9 +444,9 @@ static void test_texture_path(void)
     mt_image c, yimg, pfm;
     seen v2, fx;
     int k, ok;
-    mt_image_alloc(&c, 2, 2, 3, NULL);
-    mt_image_alloc(&yimg, 2, 2, 1, NULL);
-    mt_image_alloc(&pfm, 2, 2, 3, NULL);
+    mt_image_create(&c, 2, 2, 3, NULL);
+    mt_image_create(&yimg, 2, 2, 1, NULL);
+    mt_image_create(&pfm, 2, 2, 3, NULL);
     for (k = 0; k < 12; k++) c.data[k] = tricky[k + 10]; /* 0.7, 123.456, ... */
     for (k = 0; k < 4; k++) yimg.data[k] = 0.3f + 0.1f * (float)k;
     for (k = 0; k < 12; k++) pfm.data[k] = k < 6 ? 0.2f : 0.9f; /* top row 0.2, bottom 0.9 */
@@ -486,9 +486,9 @@ static void test_texture_path(void)
                fx.c[0], v2.c[0], fabs(v2.c[0] - fx.c[0]) / fx.c[0]);
     }
     mt_mipmap_cache_clear();
-    mt_image_free(&c);
-    mt_image_free(&yimg);
-    mt_image_free(&pfm);
+    mt_image_destroy(&c);
+    mt_image_destroy(&yimg);
+    mt_image_destroy(&pfm);
 }
 
 /* ---- the image-map cache's keys --------------------------------------- */
@@ -555,15 +555,15 @@ static void test_reference_textures(void)
         }
         if (!read_mode(path, FIXED, &b)) {
             t_fail(name, "corrected mode cannot read it");
-            mt_image_free(&a);
+            mt_image_destroy(&a);
             continue;
         }
         n = (size_t)a.width * (size_t)a.height * (size_t)a.channels;
         t_check(a.width == b.width && a.height == b.height && a.channels == b.channels &&
                     a.channels >= 3 && memcmp(a.data, b.data, n * sizeof(float)) == 0,
                 name, "the images differ");
-        mt_image_free(&a);
-        mt_image_free(&b);
+        mt_image_destroy(&a);
+        mt_image_destroy(&b);
     }
 }
 

@@ -74,7 +74,7 @@ static void fill_image(mt_image *img, int w, int h, int nc, unsigned seed)
 {
     mt_rng rng;
     size_t i;
-    mt_image_alloc(img, w, h, nc, NULL);
+    mt_image_create(img, w, h, nc, NULL);
     mt_rng_seed(&rng, seed, 1);
     for (i = 0; i < (size_t)w * (size_t)h * (size_t)nc; i++) {
         double u = mt_rng_uniform_d(&rng);
@@ -124,7 +124,7 @@ static void check_read_back(const char *path, mt_status st, const mt_error *err,
         return;
     }
     check_same(&got, want, name);
-    mt_image_free(&got);
+    mt_image_destroy(&got);
 }
 
 static int names_file(const mt_error *err, const char *path)
@@ -204,7 +204,7 @@ static void exr_round_trip(const char *name, int w, int h, int nc, int ptype, in
     o.x0 = x0;
     o.y0 = y0;
     fill_image(&img, w, h, nc, (unsigned)(w * 31 + nc));
-    mt_image_alloc(&want, w, h, nc, NULL);
+    mt_image_create(&want, w, h, nc, NULL);
     for (i = 0; i < (size_t)w * (size_t)h * (size_t)nc; i++) {
         float v = img.data[i];
         if (ptype == EXR_PIXEL_HALF) v = mt__half_to_float(mt__float_to_half(v));
@@ -213,8 +213,8 @@ static void exr_round_trip(const char *name, int w, int h, int nc, int ptype, in
     }
     mt_error_clear(&err);
     check_read_back(path, mt__exr_write(path, &img, NULL, 0, &o, &err), &err, &want, name);
-    mt_image_free(&img);
-    mt_image_free(&want);
+    mt_image_destroy(&img);
+    mt_image_destroy(&want);
     unlink(path);
 }
 
@@ -238,7 +238,7 @@ static void test_exr_round_trips(void)
         mt_error_clear(&err);
         check_read_back(t_tmp_path("pub.exr"), mt_image_write(t_tmp_path("pub.exr"), &img, NULL, 0, &err),
                         &err, &img, name);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     for (k = 0; k < (int)(sizeof comp / sizeof comp[0]); k++) {
         snprintf(name, sizeof name, "exr: float RGBA, %s compression", comp[k].n);
@@ -284,7 +284,7 @@ static void test_exr_header(void)
     fill_image(&img, 8, 4, 3, 5);
     mt_error_clear(&err);
     ok = mt_image_write(path, &img, attrs, 2, &err) == MT_OK;
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     if (!t_check(ok, "exr: write with string attributes", "%s", err.message)) return;
     if (!t_check(exr_start_read(&ctx, path, NULL) == EXR_ERR_SUCCESS,
                  "exr: OpenEXR opens materia's file", "failed"))
@@ -337,7 +337,7 @@ static void test_shared_renders(void)
         }
         if (mt_image_read(pp, &p, &err) != MT_OK) {
             t_fail(name, "%s", err.message);
-            mt_image_free(&e);
+            mt_image_destroy(&e);
             continue;
         }
         total++;
@@ -352,8 +352,8 @@ static void test_shared_renders(void)
             if (t_check(bad == 0, name, "%ld of %d pixels differ", bad, e.width * e.height))
                 agree++;
         }
-        mt_image_free(&e);
-        mt_image_free(&p);
+        mt_image_destroy(&e);
+        mt_image_destroy(&p);
     }
     printf("# pbrt-v2 renders: %d of %d EXR/PFM pairs identical\n", agree, total);
 }
@@ -481,7 +481,7 @@ static void test_png_kinds(void)
                     img.data[1] == 0 && img.data[2] == 1 && img.data[3] == 0 &&
                     img.data[4] == 1 && img.data[5] == 0,
                 "png: 1-bit gray values", "wrong pixels");
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     if (read_built(path, make_png(2, 1, 8, 4, ga, sizeof ga, NULL, 0, NULL, 0), &img,
                    "png: gray-alpha reads")) {
@@ -489,7 +489,7 @@ static void test_png_kinds(void)
                     img.data[2] == LIN(200) && img.data[3] == 1 && img.data[4] == LIN(17) &&
                     img.data[7] == 0,
                 "png: gray-alpha is RGBA, gray decoded, alpha linear", "wrong pixels");
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     if (read_built(path, make_png(4, 1, 2, 3, pal, sizeof pal, plte, 4, trns, 3), &img,
                    "png: 2-bit palette with tRNS reads")) {
@@ -498,7 +498,7 @@ static void test_png_kinds(void)
                     img.data[10] == LIN(30) && img.data[11] == 128.f / 255.f &&
                     img.data[15] == 1,
                 "png: palette expanded, tRNS as alpha", "wrong pixels");
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     if (read_built(path, make_png(1, 1, 16, 2, rgb16, sizeof rgb16, NULL, 0, NULL, 0), &img,
                    "png: 16-bit RGB reads")) {
@@ -506,7 +506,7 @@ static void test_png_kinds(void)
                     img.data[1] == 1 && img.data[2] == mt_srgb_to_linear(1 / 65535.f),
                 "png: 16-bit values decoded from sRGB", "got %.9g %.9g %.9g", img.data[0],
                 img.data[1], img.data[2]);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
 #undef LIN
     unlink(path);
@@ -524,8 +524,8 @@ static void test_png_round_trips(void)
             char name[96];
             unsigned max = bits == 8 ? 255u : 65535u;
             if (nc == 2) continue;
-            mt_image_alloc(&img, 64, 5, nc, NULL);
-            mt_image_alloc(&want, 64, 5, nc, NULL);
+            mt_image_create(&img, 64, 5, nc, NULL);
+            mt_image_create(&want, 64, 5, nc, NULL);
             for (k = 0; k < 64 * 5 * nc; k++) {
                 unsigned code = (unsigned)(k * 2654435761u) % (max + 1);
                 int alpha = nc == 4 && k % 4 == 3;
@@ -543,16 +543,16 @@ static void test_png_round_trips(void)
                             bits == 8 ? mt_image_write(path, &img, NULL, 0, &err)
                                       : mt__png_write(path, &img, 16, &err),
                             &err, &want, name);
-            mt_image_free(&img);
-            mt_image_free(&want);
+            mt_image_destroy(&img);
+            mt_image_destroy(&want);
         }
     /* and libpng's own reader sees what materia wrote */
     {
         png_image pi;
-        mt_image_alloc(&img, 3, 2, 3, NULL);
+        mt_image_create(&img, 3, 2, 3, NULL);
         for (k = 0; k < 18; k++) img.data[k] = mt_srgb_to_linear((float)(k * 13) / 255.f);
         mt_image_write(path, &img, NULL, 0, &err);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         memset(&pi, 0, sizeof pi);
         pi.version = PNG_IMAGE_VERSION;
         if (png_image_begin_read_from_file(&pi, path)) {
@@ -604,7 +604,7 @@ static void test_pfm(void)
         snprintf(name, sizeof name, "pfm: round trip, %d channel(s)", nc);
         mt_error_clear(&err);
         check_read_back(path, mt_image_write(path, &img, NULL, 0, &err), &err, &img, name);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     /* big endian (scale +1): 2 x 2, file rows bottom to top */
     put(&b, "PF\n2 2\n1.0\n", 11);
@@ -619,7 +619,7 @@ static void test_pfm(void)
                     got.data[5] == 11.5f,
                 "pfm: big endian, rows bottom to top", "got %g %g %g", got.data[0],
                 got.data[6], got.data[11]);
-        mt_image_free(&got);
+        mt_image_destroy(&got);
     }
     /* little endian, scale -2 (pbrt-v2 multiplies by |scale|), grayscale */
     b.p = NULL;
@@ -634,7 +634,7 @@ static void test_pfm(void)
                     got.data[2] == 1.5f,
                 "pfm: little endian, values times |scale|", "got %g %g %g", got.data[0],
                 got.data[1], got.data[2]);
-        mt_image_free(&got);
+        mt_image_destroy(&got);
     }
     unlink(path);
 }
@@ -654,7 +654,7 @@ static void hostile(const char *path, const char *want)
     mt__alloc_largest(1);
     st = mt_image_read(path, &img, &err);
     largest = mt__alloc_largest(1);
-    if (st == MT_OK) mt_image_free(&img);
+    if (st == MT_OK) mt_image_destroy(&img);
     snprintf(name, sizeof name, "hostile: %s is rejected (\"%s\") with no allocation over 1 MiB",
              path, want);
     t_check(st != MT_OK && names_file(&err, path) && strstr(err.message, want) && largest < (1u << 20),
@@ -700,7 +700,7 @@ static void test_hostile(void)
         t_check(img.width == 9 && img.height == 7 && img.channels == 3 && bad == 0,
                 "exr: B44 9 x 7 in 4 x 4 tiles: every value exact", "%d x %d x %d, %d wrong",
                 img.width, img.height, img.channels, bad);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
 }
 
@@ -712,7 +712,7 @@ static int read_fails_cleanly(const char *path)
     mt_error err;
     mt_error_clear(&err);
     if (mt_image_read(path, &img, &err) == MT_OK) {
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         return 0;
     }
     return err.status != MT_OK && names_file(&err, path) && img.data == NULL;
@@ -757,7 +757,7 @@ static int mangle(const unsigned char *good, size_t n, const char *file, int *re
         mt_error_clear(&err);
         (*tries)++;
         if (mt_image_read(path, &img, &err) == MT_OK) {
-            mt_image_free(&img);
+            mt_image_destroy(&img);
         } else {
             (*rejected)++;
             if (k < 20) (*cuts_rejected)++;
@@ -774,7 +774,7 @@ static int mangle(const unsigned char *good, size_t n, const char *file, int *re
 static void fill_smooth(mt_image *img, int w, int h, int nc)
 {
     int x, y, c;
-    mt_image_alloc(img, w, h, nc, NULL);
+    mt_image_create(img, w, h, nc, NULL);
     for (y = 0; y < h; y++)
         for (x = 0; x < w; x++)
             for (c = 0; c < nc; c++)
@@ -828,7 +828,7 @@ static void test_corrupt(void)
     mt__exr_write(t_tmp_path("raw.exr"), &img, NULL, 0, &o, NULL);
     mangle_check("exr: cut and flipped uncompressed files give errors naming the file",
                  "raw.exr", NULL);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
 
     /* headers that lie */
     snprintf(hdr, sizeof hdr, "PF\n100000 100000\n-1\n");
@@ -902,7 +902,7 @@ static void test_write_failures(void)
             mt_alloc_fail_after(n);
             st = mt_image_write(path, &other, NULL, 0, &err);
             mt_alloc_fail_after(-1);
-            mt_image_free(&other);
+            mt_image_destroy(&other);
             if (st == MT_OK) break;
             failures++;
             if (count_entries() != 1) leftovers++;
@@ -923,7 +923,7 @@ static void test_write_failures(void)
             st = mt_image_read(path, &back, &err);
             mt_alloc_fail_after(-1);
             if (st == MT_OK) {
-                mt_image_free(&back);
+                mt_image_destroy(&back);
                 break;
             }
             failures++;
@@ -934,7 +934,7 @@ static void test_write_failures(void)
         free(before);
         unlink(path);
     }
-    mt_image_free(&img);
+    mt_image_destroy(&img);
 }
 
 int main(void)

@@ -103,7 +103,7 @@ static void test_noise_by_hand(void)
         for (k = 0; k < 12; ++k) worst = fmax(worst, fabs(map.data[k] - r[k]));
         t_check(map.width == 2 && map.height == 2 && map.channels == 3 && worst < 2e-6,
                 "noise by hand: block map values", "off by %g", worst);
-        mt_image_free(&map);
+        mt_image_destroy(&map);
     } else
         t_fail("noise by hand: block map values", "%s", err.message);
 
@@ -113,8 +113,8 @@ static void test_noise_by_hand(void)
                 fabs(m.max - (0.22 / 30) / 0.01) < 2e-6,
             "noise by hand: a block larger than the image is the whole image",
             "max %g, want %g", m.max, 0.22 / 30 / 0.01);
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
 }
 
 /* Images with pixel noise of standard deviation sd around v, independent in
@@ -145,8 +145,8 @@ static void test_noise_gaussian(void)
     t_rel(m.p99, s * 2.5758293035489, 0.05, 0,
           "noise of gaussian images: p99 is the half-normal 99% point");
     t_rel(m.lum_ratio, 1, 2e-4, 0, "noise of gaussian images: luminance ratio 1");
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
 }
 
 /* ---- per-pixel errors --------------------------------------------------- */
@@ -167,8 +167,8 @@ static void test_pixel_errors(void)
     t_check(e.max_abs == 2 && e.max_x == 1 && e.max_y == 0 && e.max_c == 0,
             "pixel errors: largest difference and where", "%g at (%d, %d) %d", e.max_abs,
             e.max_x, e.max_y, e.max_c);
-    mt_image_free(&a);
-    mt_image_free(&b);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
 }
 
 /* ---- what cannot be compared -------------------------------------------- */
@@ -209,11 +209,11 @@ static void test_errors(void)
         fails_with(mt_imgcmp_ztest(&a, &var, &a, NULL, &o, &z, NULL, &err), &err, "significance",
                    "errors: alpha 1");
     }
-    mt_image_free(&a);
-    mt_image_free(&b);
-    mt_image_free(&y);
-    mt_image_free(&rgba);
-    mt_image_free(&var);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
+    mt_image_destroy(&y);
+    mt_image_destroy(&rgba);
+    mt_image_destroy(&var);
 }
 
 /* ---- the accumulator --------------------------------------------------- */
@@ -242,8 +242,8 @@ static void test_accumulator(void)
         t_check(mean.data[1] == 0.1f && var.data[1] == 0,
                 "accumulator: identical samples give their value and variance exactly 0",
                 "%.9g %.9g", mean.data[1], var.data[1]);
-        mt_image_free(&mean);
-        mt_image_free(&var);
+        mt_image_destroy(&mean);
+        mt_image_destroy(&var);
     } else
         t_fail("accumulator: mean", "%s", err.message);
     fails_with(mt_imgacc_add_image(acc, &wrong, &err), &err, "added to an accumulator",
@@ -257,7 +257,7 @@ static void test_accumulator(void)
     fails_with(mt_imgacc_finish(acc, &mean, NULL, &err), &err, "pixel (1, 0) has 1 sample",
                "accumulator: one sample is not enough for a variance");
     mt_imgacc_destroy(acc);
-    mt_image_free(&wrong);
+    mt_image_destroy(&wrong);
 }
 
 /* ---- the z-test by hand ------------------------------------------------- */
@@ -281,14 +281,14 @@ static void test_ztest_by_hand(void)
     if (ok) {
         t_near(zmap.data[0], 10, 1e-4, "z-test by hand: the z map holds z = 10");
         t_near(r.max_abs_z, 10, 1e-4, "z-test by hand: max |z|");
-        mt_image_free(&zmap);
+        mt_image_destroy(&zmap);
     }
     t_near(r.threshold, thr, 1e-12, "z-test by hand: Sidak threshold for m = 3");
     t_near(r.z_threshold, 3.1434916, 1e-6, "z-test by hand: |z| at the threshold");
     t_near(r.bias_z_threshold, 3.1434916, 1e-6, "z-test by hand: |bias z| at the threshold");
     t_near(r.bias_z[1], 10, 1e-4, "z-test by hand: one block: bias z = z");
     t_near(r.mean_rel, 0.1 / 0.91, 1e-6, "z-test by hand: mean relative difference");
-    mt_image_free(&b);
+    mt_image_destroy(&b);
     b = t_image_make(4, 4, 3, 0.98f);
     ok = mt_imgcmp_ztest(&a, &va, &b, NULL, NULL, &r, NULL, &err) == MT_OK;
     t_check(ok && r.pass, "z-test by hand: d = 0.02 (z = 2) passes", "min p %g", r.min_p);
@@ -307,10 +307,10 @@ static void test_ztest_by_hand(void)
         t_check(ok && !r.pass && r.exact_mismatch == 3,
                 "z-test by hand: a rounding-level variance with means 3e-4 apart fails as a mismatch",
                 "pass %d mismatches %ld", r.pass, r.exact_mismatch);
-        mt_image_free(&a3);
-        mt_image_free(&b3);
-        mt_image_free(&v3);
-        mt_image_free(&c3);
+        mt_image_destroy(&a3);
+        mt_image_destroy(&b3);
+        mt_image_destroy(&v3);
+        mt_image_destroy(&c3);
     }
     /* a small but real noise, sd 9e-5 of the mean (below exact_rel, above
      * rounding), means 1.5 sd apart: a z-test that passes (z = 1.5), not an
@@ -324,9 +324,9 @@ static void test_ztest_by_hand(void)
         t_check(ok && r.pass && r.exact == 0 && r.tests == 3 && fabs(r.max_abs_z - 1.5) < 0.01,
                 "z-test by hand: a noise of 9e-5 of the mean is z-tested, not compared exactly",
                 "pass %d exact %ld tests %ld max z %g", r.pass, r.exact, r.tests, r.max_abs_z);
-        mt_image_free(&a4);
-        mt_image_free(&b4);
-        mt_image_free(&v4);
+        mt_image_destroy(&a4);
+        mt_image_destroy(&b4);
+        mt_image_destroy(&v4);
     }
     /* 64 blocks of z = 1: no block is beyond 3.7 (Sidak over 192 tests) but
      * the global test sums them: bias_z = 64 / sqrt 64 = 8 */
@@ -339,9 +339,9 @@ static void test_ztest_by_hand(void)
                 "z-test by hand: a 1% bias everywhere is found by the global test alone",
                 "pass %d, beyond %ld, tests %ld, bias z %g, max z %g", r.pass, r.beyond, r.tests,
                 r.bias_z[2], r.max_abs_z);
-        mt_image_free(&a2);
-        mt_image_free(&b2);
-        mt_image_free(&v2);
+        mt_image_destroy(&a2);
+        mt_image_destroy(&b2);
+        mt_image_destroy(&v2);
     }
     /* per pixel: each pixel's variance 0.0016, z = 0.02 / 0.04 = 0.5 */
     {
@@ -361,9 +361,9 @@ static void test_ztest_by_hand(void)
     t_check(ok && !r.pass && r.exact_mismatch == 3,
             "z-test by hand: unequal images without variance fail as exact mismatches",
             "mismatches %ld", r.exact_mismatch);
-    mt_image_free(&a);
-    mt_image_free(&b);
-    mt_image_free(&va);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
+    mt_image_destroy(&va);
 }
 
 /* ---- the z-test on synthetic renders -------------------------------------- */
@@ -411,10 +411,10 @@ static int trial(mt_rng *rng, double bias, int region[4], mt_ztest_result *r, mt
     if (!render(rng, 16, bias, region[0], region[1], region[2], region[3], &a, &va)) return 0;
     if (!render(rng, 64, 0, 0, 0, 0, 0, &b, &vb)) return 0;
     ok = mt_imgcmp_ztest(&a, &va, &b, &vb, NULL, r, zmap, NULL) == MT_OK;
-    mt_image_free(&a);
-    mt_image_free(&va);
-    mt_image_free(&b);
-    mt_image_free(&vb);
+    mt_image_destroy(&a);
+    mt_image_destroy(&va);
+    mt_image_destroy(&b);
+    mt_image_destroy(&vb);
     return ok;
 }
 
@@ -449,7 +449,7 @@ static void test_ztest_false_alarms(void)
             beyond196 += fabs(zmap.data[k]) > 1.959964;
             nz++;
         }
-        mt_image_free(&zmap);
+        mt_image_destroy(&zmap);
     }
     t_check(bad == 0, "z-test trials: every trial runs", "%d failed to run", bad);
     t_check(failures <= 8, "z-test trials: honest renders fail at the rate alpha = 0.01",
@@ -487,7 +487,7 @@ static void test_ztest_bias(void)
                 for (c = 0; c < 3; ++c)
                     if (fabs(t_image_px(&zmap, bx, by)[c]) >= r.z_threshold && !(bx >= 6 && by < 2))
                         outside++;
-        mt_image_free(&zmap);
+        mt_image_destroy(&zmap);
     }
     t_check(detected == 20, "z-test: a +2% bias in a 8x8 region is detected",
             "%d of 20 trials", detected);
@@ -523,10 +523,10 @@ static void test_ztest_exact(void)
     mt_imgcmp_ztest(&a, &va, &b, &vb, &o, &r, NULL, NULL);
     t_check(!r.pass && r.exact_mismatch == 1, "z-test exact: exact_rel 0 asks for equality",
             "%ld mismatches", r.exact_mismatch);
-    mt_image_free(&a);
-    mt_image_free(&va);
-    mt_image_free(&b);
-    mt_image_free(&vb);
+    mt_image_destroy(&a);
+    mt_image_destroy(&va);
+    mt_image_destroy(&b);
+    mt_image_destroy(&vb);
 }
 
 /* ---- allocation failures ------------------------------------------------ */
@@ -544,11 +544,11 @@ static void test_alloc_failures(void)
         s1 = mt_imgcmp_noise(&a, &b, 4, &m, NULL);
         mt_alloc_fail_after(n);
         s2 = mt_imgcmp_ztest(&a, &va, &b, &va, NULL, &r, &map, NULL);
-        if (s2 == MT_OK) mt_image_free(&map);
+        if (s2 == MT_OK) mt_image_destroy(&map);
         mt_alloc_fail_after(n);
         s3 = mt_imgcmp_reldiff_blocks(&a, &b, 4, &map, NULL);
         mt_alloc_fail_after(-1);
-        if (s3 == MT_OK) mt_image_free(&map);
+        if (s3 == MT_OK) mt_image_destroy(&map);
         ok &= (s1 == MT_OK || s1 == MT_ERR_NOMEM) && (s2 == MT_OK || s2 == MT_ERR_NOMEM) &&
               (s3 == MT_OK || s3 == MT_ERR_NOMEM);
         fails += s1 != MT_OK || s2 != MT_OK || s3 != MT_OK;
@@ -557,9 +557,9 @@ static void test_alloc_failures(void)
     t_check(ok && fails > 0 && n < 100,
             "allocation failures: every one reported as out of memory (leaks: sanitizer build)",
             "%d failures, ok %d", fails, ok);
-    mt_image_free(&a);
-    mt_image_free(&b);
-    mt_image_free(&va);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
+    mt_image_destroy(&va);
 }
 
 /* ---- pbrt-v2's renders ---------------------------------------------------- */
@@ -622,8 +622,8 @@ static void test_pbrt_renders(void)
             t_check(fabs(m.lum_ratio - 1.02) < 1e-5 && m.max < 0.02 && m.mean > 0.01,
                     "pbrt-v2 renders: matte times 1.02", "ratio %.7f max %g mean %g",
                     m.lum_ratio, m.max, m.mean);
-            mt_image_free(&scaled);
-            mt_image_free(&pfm);
+            mt_image_destroy(&scaled);
+            mt_image_destroy(&pfm);
         } else
             t_fail("pbrt-v2 renders: matte EXR against PFM", "%s", err.message);
         for (i = 0; i < NSCENES; ++i) {
@@ -637,7 +637,7 @@ static void test_pbrt_renders(void)
                 t_fail(name, "%s", err.message);
         }
     }
-    for (i = 0; i < n; ++i) mt_image_free(&img[i]);
+    for (i = 0; i < n; ++i) mt_image_destroy(&img[i]);
 }
 
 int main(void)

@@ -42,7 +42,7 @@ static void check_png(const char *name, int w, int h, int x, int y, const float 
     t_check(back.width == w && back.height == h && (!want || off(&back, x, y, want) < 0.005),
             check, "%d x %d (want %d x %d), pixel (%d, %d) off by %g", back.width, back.height, w,
             h, x, y, want ? off(&back, x, y, want) : 0.0);
-    mt_image_free(&back);
+    mt_image_destroy(&back);
 }
 
 /* Writes img to dir/name, then check_png. */
@@ -95,7 +95,7 @@ static void test_font(void)
     mt__draw_text(&img, -7, -3, "WW", 3, white);
     mt__draw_text(&img, 12, 17, "WW", 3, white);
     t_pass("font: text is clipped at the image's edges");
-    mt_image_free(&img);
+    mt_image_destroy(&img);
 }
 
 /* ---- heat map ----------------------------------------------------------- */
@@ -124,7 +124,7 @@ static void test_heatmap(void)
     t_image_px(&blocks, 1, 1)[2] = -0.05f;
     if (mt_imgcmp_heatmap(&blocks, 4, 9, 6, 0.1, 1, &out, &err) != MT_OK) {
         t_fail("heat map", "%s", err.message);
-        mt_image_free(&blocks);
+        mt_image_destroy(&blocks);
         return;
     }
     t_check(out.width == 9 && out.height == 6 + 19 && out.channels == 3,
@@ -149,13 +149,13 @@ static void test_heatmap(void)
     t_check(worst < 1e-6, "heat map: the colour bar runs from 0 to vmax", "off by %g", worst);
     stop(2, want);
     check_written("heat.png", &out, 4, 0, want, "heat map: written as PNG and read back");
-    mt_image_free(&out);
+    mt_image_destroy(&out);
     t_check(mt_imgcmp_heatmap(&blocks, 4, 13, 6, 0.1, 0, &out, &err) == MT_ERR_INVALID &&
                 strstr(err.message, "does not cover"),
             "heat map: a block map of the wrong size is refused", "%s", err.message);
     t_check(mt_imgcmp_heatmap(&blocks, 4, 9, 6, 0, 0, &out, &err) == MT_ERR_INVALID,
             "heat map: vmax 0 is refused", "%s", err.message);
-    mt_image_free(&blocks);
+    mt_image_destroy(&blocks);
 }
 
 /* ---- contact sheet ------------------------------------------------------- */
@@ -218,13 +218,13 @@ static void test_sheet(void)
                 "%d pixels lit in the cell, %d outside", lit, spill);
     }
     check_written("sheet.png", &out, 4, 4, want, "contact sheet: written as PNG and read back");
-    mt_image_free(&out);
+    mt_image_destroy(&out);
     o.exposure = -1;
     want[0] = 0.25f;
     if (mt_sheet_make(e, 1, &o, &out, &err) == MT_OK) {
         t_check(out.width == 18 && off(&out, 4, 4, want) < 1e-7,
                 "contact sheet: exposure -1 halves; one image, one column", "%d wide", out.width);
-        mt_image_free(&out);
+        mt_image_destroy(&out);
     } else
         t_fail("contact sheet: exposure", "%s", err.message);
     e[1].image = NULL;
@@ -232,9 +232,9 @@ static void test_sheet(void)
             "contact sheet: an entry without image is named", "%s", err.message);
     t_check(mt_sheet_make(e, 0, NULL, &out, &err) == MT_ERR_INVALID,
             "contact sheet: no images is an error", "%s", err.message);
-    mt_image_free(&red);
-    mt_image_free(&grey);
-    mt_image_free(&odd);
+    mt_image_destroy(&red);
+    mt_image_destroy(&grey);
+    mt_image_destroy(&odd);
 }
 
 /* ---- the tools ----------------------------------------------------------- */
@@ -259,10 +259,10 @@ static void test_tools(void)
         for (x = 0; x < 4; ++x) t_image_px(&a, x, y)[0] = 0.55f; /* +10% in one block */
     ok = access(path, X_OK) == 0 && write_image("a.pfm", &a) && write_image("b.pfm", &b) &&
          write_image("c.pfm", &c) && write_image("v.exr", &v);
-    mt_image_free(&a);
-    mt_image_free(&b);
-    mt_image_free(&c);
-    mt_image_free(&v);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
+    mt_image_destroy(&c);
+    mt_image_destroy(&v);
     if (!ok) {
         t_fail("tools", "%s is not built or the test images cannot be written", path);
         return;

@@ -102,9 +102,9 @@ static void test_values(void)
     t_check(ok, "lobe: f cos and pdf at five pixels equal eval of their directions", "see above");
     t_check(colour_ok, "lobe: those pixels in the picture have the colour scale's colour", "see above");
     mt_query_destroy(q);
-    mt_image_free(&img);
-    mt_image_free(&fc);
-    mt_image_free(&pd);
+    mt_image_destroy(&img);
+    mt_image_destroy(&fc);
+    mt_image_destroy(&pd);
 }
 
 /* materia in-process against materia-query: every difference is 0 */
@@ -122,7 +122,7 @@ static void test_against(void)
     if (!mt_image_read(png, &img, &err))
         t_check(img.width == width_of() && img.height == height_of(2, 3), "lobe: --against draws three rows",
                 "%dx%d, wanted %dx%d", img.width, img.height, width_of(), height_of(2, 3));
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     for (k = 0; k < 3; ++k) {
         double worst = 0, total = 0;
         int i;
@@ -132,11 +132,11 @@ static void test_against(void)
             continue;
         }
         for (i = 0; i < img.width * img.height; ++i) worst = fmax(worst, fabs(img.data[i]));
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         snprintf(path, sizeof path, "%s-B-%s.pfm", raw, what[k]);
         if (!mt_image_read(path, &img, &err)) {
             for (i = 0; i < img.width * img.height; ++i) total += img.data[i];
-            mt_image_free(&img);
+            mt_image_destroy(&img);
         }
         snprintf(args, sizeof args, "lobe: in-process and materia-query %s maps identical", what[k]);
         t_check(worst == 0 && total > 0, args, "largest difference %g (B's sum %g)", worst, total);

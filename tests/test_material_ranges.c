@@ -139,7 +139,7 @@ static void api_case(void)
             "api: mt_material_create names \"index\" at scene.pbrt:3",
             "material %p, status %d, param \"%s\", at %s:%d, message \"%s\"", (void *)m, (int)err.status, err.param,
             err.file, err.line, err.message);
-    mt_material_release(m);
+    mt_material_destroy(m);
     mt_paramset_destroy(ps);
     mt_texture_table_destroy(tt);
 }

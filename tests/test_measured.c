@@ -368,7 +368,7 @@ static void test_remap(void)
         }
         t_check(b && exact == 0, "corrected mode: irregular f(wo, wi) = f(wi, wo) to the bit",
                 "%d of 20000 pairs differ", exact);
-        mt_measured_release(d);
+        mt_measured_destroy(d);
     }
     mt_arena_destroy(a);
 }
@@ -397,7 +397,7 @@ static mt_rgb synthetic_f(mt_mode mode, mt_vec3 wo, mt_vec3 wi, const double *d2
     }
     d = pts && vals ? mt__measured_irregular(pts, vals, n, &err) : NULL;
     if (d) f = mt_bxdf_f(mt_irregular_isotropic_brdf_create(a, mode, d, &err), wo, wi);
-    mt_measured_release(d);
+    mt_measured_destroy(d);
     mt_arena_destroy(a);
     return f;
 }
@@ -515,7 +515,7 @@ static void test_irregular_grid(mt_arena *a)
     m = mt_measured_irregular_create(wo, wi, v, N, &err);
     if (!t_check(m != NULL, "irregular synthetic data: created", "%s", err.message)) return;
     grid_vs_tree(a, m, "irregular synthetic data (4000 samples)");
-    mt_measured_release(m);
+    mt_measured_destroy(m);
     /* directions far from unit length are admitted; a remapped point that is
      * not finite (float) or far from the rest (double: z = 1e60) leaves the
      * data without a grid, still searchable */
@@ -526,7 +526,7 @@ static void test_irregular_grid(mt_arena *a)
         t_check(mt_rgb_is_finite(f) && m->tree.grid == NULL,
                 "irregular data with two directions of length 1e30: f finite, no grid index",
                 "f = (%g, %g, %g), %s grid index", f.c[0], f.c[1], f.c[2], m->tree.grid ? "a" : "no");
-        mt_measured_release(m);
+        mt_measured_destroy(m);
     }
 }
 
@@ -586,7 +586,7 @@ static void test_real_file(const char *dir, const char *file, mt_arena *a)
     m = mt_measured_load(path, &err);
     snprintf(name, sizeof name, "%s: read", file);
     if (!t_check(m && numbers > 0 && nwl == 31, name, "%s", m ? "unexpected header" : err.message)) {
-        mt_measured_release(m);
+        mt_measured_destroy(m);
         return;
     }
     snprintf(name, sizeof name, "%s: sample count", file);
@@ -645,7 +645,7 @@ static void test_real_file(const char *dir, const char *file, mt_arena *a)
     printf("  %s: %d of 2000 pairs over the whole sphere give 0 (black: no weight, or every "
            "channel clamped)\n", file, empty);
     grid_vs_tree(a, m, file);
-    mt_measured_release(m);
+    mt_measured_destroy(m);
 }
 
 static void test_real_files(mt_arena *a)
@@ -670,7 +670,7 @@ static mt_bsdf *mystique_bsdf(void *ctx, mt_arena *a, mt_error *err)
     mt_measured *m = mt_measured_load(ctx, err); /* read once; the cache keeps it */
     mt_bsdf *b = m ? mt_bsdf_create(a, M, &dg, dg.n, 1, err) : NULL;
     if (b && mt_bsdf_add(b, mt_irregular_isotropic_brdf_create(a, M, m, err), err)) b = NULL;
-    mt_measured_release(m);
+    mt_measured_destroy(m);
     return b;
 }
 
@@ -697,7 +697,7 @@ static void expect_error(const char *name, const char *path, const char *needle,
                 (line == 0 || err.line == line),
             name, "%s (wanted \"%s\" at line %d)", m ? "loaded" : msg, needle, line);
     if (!m) printf("    %s\n", msg);
-    mt_measured_release(m);
+    mt_measured_destroy(m);
 }
 
 static const char *write_text(const char *rel, const char *text)
@@ -828,7 +828,7 @@ static void test_broken_merl(void)
         t_check(!m && largest < (1u << 20) && strstr(err.message, "doubles), found 0"),
                 "MERL error: a header alone allocates no table",
                 "largest request %zu bytes: %s", largest, m ? "loaded" : err.message);
-        mt_measured_release(m);
+        mt_measured_destroy(m);
     }
     snprintf(path, sizeof path, "%s", write_merl("broken/nan.binary", 90, 90, 180, all, 5, NAN, 0));
     expect_error("MERL error: NaN value", path, "red value of entry 5 (theta_h 0, theta_d 0, phi_d 5) is nan", 0);
@@ -852,7 +852,7 @@ static void test_broken_merl(void)
                     t[3 * 7 + 2] == (mt_real)(0.5 * (double)s2) && t[0] == (mt_real)(0.5 * (double)s0),
                 "MERL: values scaled by 1/1500, 1.15/1500, 1.66/1500; MERL's negative 'no data' read as 0",
                 "%s", m ? "wrong values" : err.message);
-        mt_measured_release(m);
+        mt_measured_destroy(m);
     }
 }
 
@@ -971,7 +971,7 @@ static void test_cache_threads(const char *path)
     t_check(started == T && same && mt_measured_cache_size() == 1,
             "cache: threads loading one file at once share one object", "%d threads, %s, %d cached",
             started, same ? "same" : "different objects", mt_measured_cache_size());
-    for (i = 0; i < started; ++i) mt_measured_release(l[i].got);
+    for (i = 0; i < started; ++i) mt_measured_destroy(l[i].got);
     mt_measured_cache_clear();
 }
 
@@ -1014,7 +1014,7 @@ static void test_api(mt_arena *a, const mt_measured *m)
     bad = mt_measured_irregular_create(&w, &nan3, &one, 1, &err);
     t_check(!bad && strstr(err.message, "sample 0 has a value that is not finite"),
             "measured API: a NaN direction is an error", "%s", bad ? "accepted" : err.message);
-    mt_measured_release(h);
+    mt_measured_destroy(h);
     free(copy);
 }
 
@@ -1045,15 +1045,15 @@ static void test_merl_roundtrip(mt_arena *a)
     same = mt_measured_load(path, &err);
     t_check(m && same == m && mt_measured_cache_size() == n, "cache: the same file gives the same data",
             "%p then %p, %d then %d files cached", (void *)m, (void *)same, n, mt_measured_cache_size());
-    mt_measured_release(same);
+    mt_measured_destroy(same);
     mt_measured_cache_clear();
     same = mt_measured_load(path, &err);
     t_check(same && same != m && mt_measured_cache_size() == 1,
             "cache: cleared, the file is read again (data still held stays valid)", "%s",
             same ? "same object" : err.message);
-    mt_measured_release(same);
-    mt_measured_release(m);
-    mt_measured_release(c);
+    mt_measured_destroy(same);
+    mt_measured_destroy(m);
+    mt_measured_destroy(c);
     mt_measured_cache_clear();
     t_check(mt_measured_cache_size() == 0, "cache: empty after clearing", "%d entries", mt_measured_cache_size());
     test_cache_threads(path);
@@ -1098,7 +1098,7 @@ static void test_alloc_failures(const char *path, const char *label)
         mt_alloc_fail_after(-1);
         if (m) {
             done = 1;
-            mt_measured_release(m);
+            mt_measured_destroy(m);
         } else if (err.status != MT_ERR_NOMEM || mt_measured_cache_size() != 0) {
             clean = 0;
             printf("  allocation %ld failed: %s\n", n, err.message);

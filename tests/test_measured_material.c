@@ -73,7 +73,7 @@ static void test_pbrt_values(void)
                 "%.7g", r);
         mt_arena_destroy(a);
     }
-    mt_material_release(m);
+    mt_material_destroy(m);
 }
 
 /* Two materials of one file share its data; "bumpmap" is accepted; the
@@ -118,9 +118,9 @@ static void test_sharing_and_bump(mt_arena *a)
                 f1.c[0], f1.c[1], f1.c[2], fb.c[0], fb.c[1], fb.c[2]);
     }
 done:
-    mt_material_release(m1);
-    mt_material_release(m2);
-    mt_material_release(bumped);
+    mt_material_destroy(m1);
+    mt_material_destroy(m2);
+    mt_material_destroy(bumped);
 }
 
 static void expect_material_error(const char *name, const char *text, const char *dir,
@@ -137,7 +137,7 @@ static void expect_material_error(const char *name, const char *text, const char
             name, "%s (wanted \"%s\" in %s, parameter \"filename\")", m ? "created" : msg, needle,
             file ? file : "the message");
     if (!m) printf("    %s\n", msg);
-    mt_material_release(m);
+    mt_material_destroy(m);
 }
 
 static void test_errors(const char *dir)
@@ -194,8 +194,8 @@ static void test_merl_tool_path(mt_arena *a, const char *dir)
                 "materia-merl (library): an unknown material is an error", "%s", err.message);
     }
 done:
-    mt_material_release(truth_m);
-    mt_material_release(table_m);
+    mt_material_destroy(truth_m);
+    mt_material_destroy(table_m);
     mt_arena_destroy(a2);
     mt_measured_cache_clear();
     remove(path);

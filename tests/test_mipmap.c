@@ -42,7 +42,7 @@ static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
 static void gray_image(mt_image *img, int w, int h, float v)
 {
     int i;
-    mt_image_alloc(img, w, h, 1, NULL);
+    mt_image_create(img, w, h, 1, NULL);
     for (i = 0; i < w * h; i++) img->data[i] = v;
 }
 
@@ -73,14 +73,14 @@ static void test_levels(void)
         t_check(ok, name, "got %d levels, level 0 %d x %d", m ? mt_mipmap_levels(m) : -1,
                 mt_mipmap_width(m, 0), mt_mipmap_height(m, 0));
         mt_mipmap_destroy(m);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     /* the box filter, exactly: texel (s, t) of a 4 x 4 image holds 10 t + s */
     {
         mt_image img;
         mt_mipmap *m;
         int s, t;
-        mt_image_alloc(&img, 4, 4, 1, NULL);
+        mt_image_create(&img, 4, 4, 1, NULL);
         for (t = 0; t < 4; t++)
             for (s = 0; s < 4; s++) img.data[4 * t + s] = (float)(10 * t + s);
         m = make(&img, 1, MT_WRAP_REPEAT, MT_MODE_PBRT_V2);
@@ -91,7 +91,7 @@ static void test_levels(void)
                 mt_mipmap_texel(m, 1, 0, 0).c[0], mt_mipmap_texel(m, 1, 1, 1).c[0],
                 mt_mipmap_texel(m, 2, 0, 0).c[0]);
         mt_mipmap_destroy(m);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
 }
 
@@ -103,7 +103,7 @@ static void test_wrap(void)
     static const double want[3][3] = {{23, 21, 21.5}, {0, 0, 10}, {20, 3, 20}};
     mt_image img;
     int w, s, t;
-    mt_image_alloc(&img, 4, 4, 1, NULL);
+    mt_image_create(&img, 4, 4, 1, NULL);
     for (t = 0; t < 4; t++)
         for (s = 0; s < 4; s++) img.data[4 * t + s] = (float)(10 * t + s);
     for (w = 0; w < 3; w++) {
@@ -116,14 +116,14 @@ static void test_wrap(void)
                 "got %g %g %g, want %g %g %g", a, b, c, want[w][0], want[w][1], want[w][2]);
         mt_mipmap_destroy(m);
     }
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     /* a side of 1: pbrt-v2's box filter reads the missing row through the
      * wrap mode, so black averages in black */
     {
         float v[4] = {1, 2, 3, 4};
         mt_image im;
         mt_mipmap *rep, *blk;
-        mt_image_alloc(&im, 4, 1, 1, NULL);
+        mt_image_create(&im, 4, 1, 1, NULL);
         memcpy(im.data, v, sizeof v);
         rep = make(&im, 1, MT_WRAP_REPEAT, MT_MODE_PBRT_V2);
         blk = make(&im, 1, MT_WRAP_BLACK, MT_MODE_PBRT_V2);
@@ -134,7 +134,7 @@ static void test_wrap(void)
                 mt_mipmap_texel(blk, 1, 0, 0).c[0], mt_mipmap_texel(blk, 2, 0, 0).c[0]);
         mt_mipmap_destroy(rep);
         mt_mipmap_destroy(blk);
-        mt_image_free(&im);
+        mt_image_destroy(&im);
     }
 }
 
@@ -179,7 +179,7 @@ static void test_constant(void)
                          tri ? "trilinear" : "EWA", allowed);
                 t_check(worst <= allowed, name, "off by %g ulps", worst);
                 mt_mipmap_destroy(m);
-                mt_image_free(&img);
+                mt_image_destroy(&img);
             }
 }
 
@@ -228,7 +228,7 @@ static void test_resample(void)
     allow = 3.0 / 37 * m1 + 16 * EPS * 4;
     for (axis = 0; axis < 2; axis++) {
         int w = axis ? 5 : 37, h = axis ? 37 : 5;
-        mt_image_alloc(&img, w, h, 1, NULL);
+        mt_image_create(&img, w, h, 1, NULL);
         for (i = 0; i < w * h; i++) {
             int x = axis ? i / w : i % w;
             img.data[i] = (float)(1 + 3 * (x + 0.5) / 37);
@@ -240,7 +240,7 @@ static void test_resample(void)
             if (d > worst[axis]) worst[axis] = d;
         }
         mt_mipmap_destroy(m);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     t_check(worst[0] <= allow && worst[1] <= allow,
             "resample: a ramp zoomed 37 -> 64 stays within the Lanczos kernel's first moment",
@@ -249,7 +249,7 @@ static void test_resample(void)
            "bound %.4f texel\n",
            worst[0], worst[1], m1);
     /* a step from 0 to 1 rings below 0 next to the edge: clamped to 0 */
-    mt_image_alloc(&img, 37, 1, 1, NULL);
+    mt_image_create(&img, 37, 1, 1, NULL);
     for (i = 0; i < 37; i++) img.data[i] = i < 18 ? 0.f : 1.f;
     m = make(&img, 1, MT_WRAP_CLAMP, MT_MODE_PBRT_V2);
     {
@@ -266,7 +266,7 @@ static void test_resample(void)
         printf("# resample: step 0 -> 1 rings up to %.4f above 1\n", hi - 1);
     }
     mt_mipmap_destroy(m);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
 }
 
 /* ---- accuracy against the reference filters ---------------------------- */
@@ -425,7 +425,7 @@ static void test_accuracy(void)
         }
         for (q = 0; q < 3; q++) {
             mt_mipmap_destroy(mm[q]);
-            mt_image_free(&mi[q]);
+            mt_image_destroy(&mi[q]);
         }
     }
     for (f = 0; f < T_NFILTERS; f++) {
@@ -452,8 +452,8 @@ static void test_accuracy(void)
     report("7-texel-wave", eh);
     mt_mipmap_destroy(ms);
     mt_mipmap_destroy(mh);
-    mt_image_free(&img_s);
-    mt_image_free(&img_h);
+    mt_image_destroy(&img_s);
+    mt_image_destroy(&img_h);
 }
 
 /* ---- the trilinear-width erratum ---------------------------------------- */
@@ -509,8 +509,8 @@ static void test_trilinear_width(void)
     mt_mipmap_destroy(fx);
     mt_mipmap_destroy(qp);
     mt_mipmap_destroy(qf);
-    mt_image_free(&img);
-    mt_image_free(&q);
+    mt_image_destroy(&img);
+    mt_image_destroy(&q);
 }
 
 /* ---- pbrt-v2's own answers ------------------------------------------------ */
@@ -650,7 +650,7 @@ static void test_defined_values(void)
         t_check(rejected == 3, "defined values: maxanisotropy 0, -1, NaN rejected for EWA",
                 "%d of 3 rejected", rejected);
     }
-    mt_image_free(&img);
+    mt_image_destroy(&img);
 }
 
 /* ---- the cache -------------------------------------------------------- */
@@ -683,7 +683,7 @@ static void test_cache(void)
     snprintf(cache_path, sizeof cache_path, "%s/tex.pfm", dir);
     snprintf(missing, sizeof missing, "%s/missing.exr", dir);
     /* a 2 x 2 RGB texture (PFM: exact floats) */
-    mt_image_alloc(&img, 2, 2, 3, NULL);
+    mt_image_create(&img, 2, 2, 3, NULL);
     for (k = 0; k < 12; k++) img.data[k] = (float)(k + 1) / 10.f;
     img.data[4] = -0.25f; /* a negative value, for gamma */
     mt_image_write(cache_path, &img, NULL, 0, NULL);
@@ -750,7 +750,7 @@ static void test_cache(void)
     mt_mipmap_cache_clear();
     t_check(mt_mipmap_cache_size() == 0, "cache: clear empties it", "%d left",
             mt_mipmap_cache_size());
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     t_tmpdir_remove();
 }
 

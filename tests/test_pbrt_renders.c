@@ -102,7 +102,7 @@ int main(void)
         }
         if (mt_render_file(scene, &o, &img, NULL, &st, &err) != MT_OK) {
             t_fail(name, "render failed: %s", err.message);
-            mt_image_free(&pbrt);
+            mt_image_destroy(&pbrt);
             continue;
         }
         if (mt_imgcmp_noise(&img, &pbrt, 4, &m, &err) != MT_OK) {
@@ -117,8 +117,8 @@ int main(void)
                    mat, m.mean, m.p99, m.max, m.lum_ratio, nr->mean, nr->p99, nr->max, nr->lum, st.seconds,
                    st.samples_per_second);
         }
-        mt_image_free(&img);
-        mt_image_free(&pbrt);
+        mt_image_destroy(&img);
+        mt_image_destroy(&pbrt);
     }
     for (k = 0; k < sizeof real / sizeof real[0]; ++k) {
         char scene[512], name[128];
@@ -138,7 +138,7 @@ int main(void)
         for (p = 0; p < (size_t)img.width * img.height * img.channels; ++p)
             if (!isfinite(img.data[p]) || img.data[p] < 0) bad++;
         t_check(bad == 0, name, "%zu pixel values not finite or negative", bad);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     return t_status();
 }

@@ -333,7 +333,7 @@ static void test_lens_texture_filtering(void)
         mt_scene_destroy(s);
         if (!ok) {
             t_fail("camera thin lens texture filtering", "scene or render failed");
-            while (k-- > 0) mt_image_free(&img[k]);
+            while (k-- > 0) mt_image_destroy(&img[k]);
             return;
         }
     }
@@ -359,7 +359,7 @@ static void test_lens_texture_filtering(void)
         t_fail("camera thin lens, plane in focus (pbrt-v2 mode): the pinhole's image",
                "pbrt-v2's differentials should blur the checks: RMS difference %.3g, standard deviation %.3g",
                rms[0], sd);
-    for (k = 0; k < 4; ++k) mt_image_free(&img[k]);
+    for (k = 0; k < 4; ++k) mt_image_destroy(&img[k]);
 }
 
 /* ---- filters and film ---------------------------------------------------------- */
@@ -489,7 +489,7 @@ static void test_film_normalization(void)
                                                                          fabs(img.data[3 * i + 2] - 3))));
         snprintf(name, sizeof name, "film %s: a constant radiance develops to that constant", names[k]);
         t_check(worst < 1e-5, name, "max error %.3g", worst);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         mt__film_buf_free(&b);
     }
     mt_paramset_destroy(ps);
@@ -537,9 +537,9 @@ static void test_crop_window(void)
         t_check(crop.width == 16 && crop.height == 12 && same,
                 "film crop window renders the same pixels as the full image", "size %dx%d, same %d",
                 crop.width, crop.height, same);
-        mt_image_free(&crop);
+        mt_image_destroy(&crop);
     }
-    mt_image_free(&full);
+    mt_image_destroy(&full);
     mt_scene_destroy(s);
 }
 
@@ -970,7 +970,7 @@ static void test_infinite_lights(void)
     }
     /* a 24x12 map, dim everywhere with a bright patch and a gradient */
     dir = t_tmpdir_create("render-light");
-    if (!dir || mt_image_alloc(&img, 24, 12, 3, &err) != MT_OK) {
+    if (!dir || mt_image_create(&img, 24, 12, 3, &err) != MT_OK) {
         t_fail("light infinite map", "no temporary directory");
         mt_paramset_destroy(ps);
         return;
@@ -982,7 +982,7 @@ static void test_infinite_lights(void)
     }
     snprintf(path, sizeof path, "%s/map.pfm", dir);
     mt_image_write(path, &img, NULL, 0, &err);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     {
         mt_param p;
         const char *names[1];

@@ -66,7 +66,7 @@ static void test_bump_floor(void)
             for (x = 0; x < img.width; ++x) off += fabs(img.data[(y * img.width + x) * img.channels] - flat) > 2e-6;
         t_check(off == 0, "fidelity: bump floor at 1 spp: the far rows unbumped, as pbrt-v2 renders them",
                 "%d of %d pixels of rows 0-15 are not %.6f", off, 16 * img.width, flat);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     } else {
         t_fail("fidelity: bump floor at 1 spp", "%s", err.message);
     }
@@ -76,8 +76,8 @@ static void test_bump_floor(void)
     if (t_render(s, 16, 1, 0, &img, &var, &err) == MT_OK) {
         t_region_stats(&img, &var, 0, 0, img.width, img.height, 0, &mean, &se);
         t_rel(mean, 0.426149, 3e-3, 0, "fidelity: bump floor at 16 spp: mean as pbrt-v2's within 0.3%");
-        mt_image_free(&img);
-        mt_image_free(&var);
+        mt_image_destroy(&img);
+        mt_image_destroy(&var);
     } else {
         t_fail("fidelity: bump floor at 16 spp", "%s", err.message);
     }
@@ -97,7 +97,7 @@ static void test_fbm_plane(void)
         for (i = 0; i < img.width * img.height; ++i) off += fabs(img.data[i * img.channels] - 0.5) > 1e-6;
         t_check(off == 0, "fidelity: fbm plane at 16 spp: every pixel 0.5, as pbrt-v2 renders it",
                 "%d of %d pixels are not 0.5", off, img.width * img.height);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     } else {
         t_fail("fidelity: fbm plane", "%s", err.message);
     }

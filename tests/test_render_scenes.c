@@ -80,8 +80,8 @@ static void test_plane_furnace(void)
         snprintf(name, sizeof name, "%s: a Lambertian plane under a constant sky is Kd L", integ[i]);
         if (!render(name, text, 0, &img, &var)) continue;
         check_mean(name, &img, &var, want);
-        mt_image_free(&img);
-        mt_image_free(&var);
+        mt_image_destroy(&img);
+        mt_image_destroy(&var);
     }
 }
 
@@ -152,8 +152,8 @@ static void test_point_light(void)
                 n++;
             }
         t_check(ok && n > 200, name, "%d pixels, worst relative difference %.3g", n, worst);
-        mt_image_free(&img);
-        mt_image_free(&var);
+        mt_image_destroy(&img);
+        mt_image_destroy(&var);
     }
 }
 
@@ -182,15 +182,15 @@ static void test_env_spheres(void)
         for (i = 0; i < 16 * 16 * 3; ++i) worst = fmax(worst, fabs(img.data[i] - L[i % 3]) / L[i % 3]);
         t_check(worst < 1e-5, "path: a perfect mirror sphere in a constant sky reflects L exactly",
                 "worst relative difference %.3g", worst);
-        mt_image_free(&img);
-        mt_image_free(&var);
+        mt_image_destroy(&img);
+        mt_image_destroy(&var);
     }
     snprintf(text, sizeof text, env_scene, 64, "Material \"glass\"");
     if (render("glass sphere", text, 0, &img, &var)) {
         check_mean("path: a glass sphere in a constant sky returns L (R + T = 1 at every event)",
                    &img, &var, L);
-        mt_image_free(&img);
-        mt_image_free(&var);
+        mt_image_destroy(&img);
+        mt_image_destroy(&var);
     }
 }
 
@@ -227,8 +227,8 @@ static void test_path_vs_direct(void)
         if (!render(name, text, 0, &a, &av)) continue;
         snprintf(text, sizeof text, agree_scene, "directlighting", mats[k]);
         if (!render(name, text, 0, &b, &bv)) {
-            mt_image_free(&a);
-            mt_image_free(&av);
+            mt_image_destroy(&a);
+            mt_image_destroy(&av);
             continue;
         }
         for (c = 0; c < 3; ++c) {
@@ -239,10 +239,10 @@ static void test_path_vs_direct(void)
         }
         t_check(ok, name, "path (%.5g %.5g %.5g) +- (%.2g %.2g %.2g), directlighting (%.5g %.5g %.5g) +- (%.2g %.2g %.2g)",
                 ma[0], ma[1], ma[2], sa[0], sa[1], sa[2], mb[0], mb[1], mb[2], sb[0], sb[1], sb[2]);
-        mt_image_free(&a);
-        mt_image_free(&av);
-        mt_image_free(&b);
-        mt_image_free(&bv);
+        mt_image_destroy(&a);
+        mt_image_destroy(&av);
+        mt_image_destroy(&b);
+        mt_image_destroy(&bv);
     }
 }
 
@@ -295,11 +295,11 @@ static void test_mesh_light(void)
         t_check(n == 32 && ma > 0.01 && fabs(ma - mb) <= 5 * sqrt(sa * sa + sb * sb) + 1e-5 * mb,
                 "an area light of 2 and of 32 triangles (direct tests and scene queries) agree",
                 "%d triangles: %.6g +- %.2g against %.6g +- %.2g", n, mb, sb, ma, sa);
-        mt_image_free(&b);
-        mt_image_free(&bv);
+        mt_image_destroy(&b);
+        mt_image_destroy(&bv);
     }
-    mt_image_free(&a);
-    mt_image_free(&av);
+    mt_image_destroy(&a);
+    mt_image_destroy(&av);
 }
 
 /* ---- determinism and allocation --------------------------------------------------- */
@@ -346,9 +346,9 @@ static void test_threads_identical(void)
         t_check(t_images_identical(&one, &two) && t_images_identical(&one, &three) && sum > 0,
                 "bit-identical images on 1, 2 and 3 threads (gaussian filter across 8x8 tiles)",
                 "images differ");
-        mt_image_free(&one);
-        mt_image_free(&two);
-        mt_image_free(&three);
+        mt_image_destroy(&one);
+        mt_image_destroy(&two);
+        mt_image_destroy(&three);
     } else {
         t_fail("bit-identical images on 1, 2 and 3 threads", "render failed");
     }
@@ -365,13 +365,13 @@ static void test_no_allocation_per_sample(void)
     for (threads = 1; threads <= 2; ++threads) {
         char name[160];
         render_opts(s, 1, threads, 0, &img); /* warm-up: texture and image caches */
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         c0 = mt_alloc_count();
         render_opts(s, 2, threads, 0, &img);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         c1 = mt_alloc_count();
         render_opts(s, 16, threads, 0, &img);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         c2 = mt_alloc_count();
         snprintf(name, sizeof name,
                  "no heap allocation per sample (%d thread%s: allocations of a render at 2 and 16 spp)",
@@ -467,7 +467,7 @@ static void test_broken_files(void)
         if (d) closedir(d);
         /* main.pbrt, good.pbrt, inc, out.exr: no temporary file left */
         t_check(st != MT_OK && n == 4, "a failed write leaves no temporary file", "status %d, %d entries", st, n);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     } else {
         t_fail("a failed write leaves no temporary file", "render failed");
     }

@@ -57,11 +57,11 @@ static void test_hand_values(void)
     vb.data[1] = (float)NAN;
     t_check(t_sqerr_compute(&a, NULL, &b, &vb, &e, msg, sizeof msg) == -1, "sqerr: a NaN variance is an error",
             "%s", msg);
-    mt_image_free(&a);
-    mt_image_free(&b);
-    mt_image_free(&vb);
-    mt_image_free(&va);
-    mt_image_free(&small);
+    mt_image_destroy(&a);
+    mt_image_destroy(&b);
+    mt_image_destroy(&vb);
+    mt_image_destroy(&va);
+    mt_image_destroy(&small);
 }
 
 /* The expectation of value k of the synthetic scene: 0.05 to 2, varied. */
@@ -126,7 +126,7 @@ static double stat_se(const trial_stat *st)
 static void free_images(mt_image *img, int n)
 {
     int i;
-    for (i = 0; i < n; ++i) mt_image_free(&img[i]);
+    for (i = 0; i < n; ++i) mt_image_destroy(&img[i]);
 }
 
 /* TRIALS pairs (image of na samples with a bias, reference of nr samples):

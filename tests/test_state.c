@@ -63,7 +63,7 @@ mt_texture *mt_texture_create(const char *class_name, int is_float, const mt_tra
     return t;
 }
 
-void mt_texture_release(mt_texture *t)
+void mt_texture_destroy(mt_texture *t)
 {
     if (t && --t->refs == 0) {
         live_textures--;
@@ -94,7 +94,7 @@ mt_texture_table *mt_texture_table_clone(const mt_texture_table *src)
 void mt_texture_table_destroy(mt_texture_table *t)
 {
     int i;
-    for (i = 0; i < t->n; ++i) mt_texture_release(t->e[i].t);
+    for (i = 0; i < t->n; ++i) mt_texture_destroy(t->e[i].t);
     free(t->e);
     free(t);
     live_tables--;
@@ -115,7 +115,7 @@ mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture
     tex->refs++; /* the table holds its own reference */
     for (i = 0; i < t->n; ++i)
         if (t->e[i].is_float == tex->is_float && strcmp(t->e[i].name, name) == 0) {
-            mt_texture_release(t->e[i].t);
+            mt_texture_destroy(t->e[i].t);
             t->e[i].t = tex;
             return MT_OK;
         }

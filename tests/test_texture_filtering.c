@@ -69,7 +69,7 @@ static mt_real closed(mt_mode mode, mt_real s, mt_real t, mt_real ds, mt_real dt
     dg.dudx = ds;
     dg.dvdy = -dt; /* the filter takes absolute values */
     v = mt_texture_eval_float(c, &dg);
-    mt_texture_release(c);
+    mt_texture_destroy(c);
     return v;
 }
 
@@ -190,7 +190,7 @@ int main(void)
     wide_footprints();
     one_sided();
     thin_footprints();
-    mt_texture_release(zero);
-    mt_texture_release(one);
+    mt_texture_destroy(zero);
+    mt_texture_destroy(one);
     return t_status();
 }

@@ -77,7 +77,7 @@ static void check_value(const char *cls, int is_float, const char *mat, mt_real 
         return;
     }
     t_near(at(t, u, v), want, 1e-6, name);
-    mt_texture_release(t);
+    mt_texture_destroy(t);
 }
 
 static void test_classes(void)
@@ -95,7 +95,7 @@ static void test_classes(void)
                 ok = 0;
             }
             if (expect_fail && t) ok = 0;
-            mt_texture_release(t);
+            mt_texture_destroy(t);
         }
     t_check(ok && n == 12 && names[n] == NULL,
             "registry: the 12 pbrt-v2 classes, float and spectrum where pbrt-v2 has them", "-");
@@ -140,12 +140,12 @@ static void test_defaults(void)
     t = make("fbm", 1, NULL, "", MT_MODE_PBRT_V2, NULL);
     t_near(at(t, p.x, p.y), mt__fbm(p, zero, zero, (mt_real)0.5, 8), 1e-7,
            "fbm: 8 octaves, roughness 0.5 by default");
-    mt_texture_release(t);
+    mt_texture_destroy(t);
     t = make("wrinkled", 1, NULL, "\"integer octaves\" 3 \"float roughness\" 0.7",
              MT_MODE_PBRT_V2, NULL);
     t_near(at(t, p.x, p.y), mt__turbulence(p, zero, zero, (mt_real)0.7, 3), 1e-7,
            "wrinkled: octaves, roughness");
-    mt_texture_release(t);
+    mt_texture_destroy(t);
     {
         mt_transform id = mt_transform_identity();
         mt_map3d m3 = mt__map3d(&id, MT_MODE_PBRT_V2);
@@ -154,8 +154,8 @@ static void test_defaults(void)
         t = make("marble", 0, NULL, "", MT_MODE_PBRT_V2, NULL);
         t_check(t && at(t, p.x, p.y) == at(ref, p.x, p.y),
                 "marble: octaves 8, roughness 0.5, scale 1, variation 0.2 by default", "-");
-        mt_texture_release(t);
-        mt_texture_release(ref);
+        mt_texture_destroy(t);
+        mt_texture_destroy(ref);
     }
 }
 
@@ -169,11 +169,11 @@ static void test_lookup_rules(void)
     /* geometry first, then material */
     t = make("scale", 1, "\"float tex1\" 0.25", "\"float tex1\" 0.75", MT_MODE_PBRT_V2, NULL);
     t_check(t && at(t, 0, 0) == (mt_real)0.25, "texparams: geometry parameters first", "-");
-    mt_texture_release(t);
+    mt_texture_destroy(t);
     /* a texture anywhere beats a value (pbrt-v2 looks for textures first) */
     t = make("scale", 1, "\"float tex1\" 0.25", "\"texture tex1\" \"a\"", MT_MODE_PBRT_V2, NULL);
     t_check(t && at(t, 0, 0) == (mt_real)0.125, "texparams: a named texture before a value", "-");
-    mt_texture_release(t);
+    mt_texture_destroy(t);
     /* unknown name, and the other namespace */
     t = make("scale", 1, NULL, "\"texture tex2\" \"nope\"", MT_MODE_PBRT_V2, NULL);
     t_check(!t && err.status == MT_ERR_NOT_FOUND && !strcmp(err.param, "tex2") && err.line == 1,
@@ -212,7 +212,7 @@ static void test_lookup_rules(void)
     t = NULL;
     t_check(mt_texparams_float_texture_opt(&tp, "bumpmap", &t, &err) == MT_OK && t == a,
             "texparams: an optional float texture present", "-");
-    mt_texture_release(t);
+    mt_texture_destroy(t);
     t_check(mt_texparams_float_texture_opt(&tp, "displacement", &t, &err) == MT_OK && !t,
             "texparams: an optional float texture absent", "-");
     mt_paramset_destroy(m);
@@ -222,8 +222,8 @@ static void test_lookup_rules(void)
                 !strcmp(err.param, "bumpmap"),
             "texparams: a value where only a texture is read is an error", "%s", err.message);
     mt_paramset_destroy(m);
-    mt_texture_release(a);
-    mt_texture_release(c);
+    mt_texture_destroy(a);
+    mt_texture_destroy(c);
 }
 
 static int unused_count;
@@ -248,7 +248,7 @@ static void test_used_marks(void)
     t_check(t && unused_count == 1,
             "texparams: both lists' parameters count as used, unknown ones are reported",
             "%d unused", unused_count);
-    mt_texture_release(t);
+    mt_texture_destroy(t);
     mt_paramset_destroy(g);
     mt_paramset_destroy(m);
 }
@@ -273,10 +273,10 @@ static void test_mode_and_transform(void)
         if (mt_texture_eval_float(dv2, &dg) + mt_texture_eval_float(dfix, &dg) != 1) differ = 0;
     }
     t_check(differ, "texparams: dots' inside/outside follow the mode (dots-inside)", "-");
-    mt_texture_release(v2);
-    mt_texture_release(fix);
-    mt_texture_release(dv2);
-    mt_texture_release(dfix);
+    mt_texture_destroy(v2);
+    mt_texture_destroy(fix);
+    mt_texture_destroy(dv2);
+    mt_texture_destroy(dfix);
 }
 
 int main(void)

@@ -36,8 +36,8 @@ static void test_constant(void)
             "constant: float read as gray, spectrum read as luminance", "%g", (double)v.c[0]);
     t_check(mt_texture_constant_float((mt_real)NAN, &err) == NULL && err.status == MT_ERR_INVALID,
             "constant: NaN rejected", "accepted");
-    mt_texture_release(f);
-    mt_texture_release(c);
+    mt_texture_destroy(f);
+    mt_texture_destroy(c);
 }
 
 /* uv: (su u + du - floor, sv v + dv - floor, 0), also for negative u. */
@@ -62,7 +62,7 @@ static void test_uv(void)
     t_check(worst < 1e-5, "uv: fractional parts of the scaled, shifted (u, v)", "error %g", worst);
     t_check(!mt_texture_is_float(t) && !strcmp(mt_texture_class(t), "uv"),
             "uv: a spectrum texture", "-");
-    mt_texture_release(t);
+    mt_texture_destroy(t);
 }
 
 /* bilerp: the corners are v00 (0,0), v01 (0,1), v10 (1,0), v11 (1,1); inside
@@ -89,8 +89,8 @@ static void test_bilerp(void)
         worst = fmax(worst, fabs(mt_texture_eval_float(f, &dg) - r.c[0]));
     }
     t_check(worst < 4e-6, "bilerp: bilinear in (s, t), corners v00 v01 v10 v11", "error %g", worst);
-    mt_texture_release(t);
-    mt_texture_release(f);
+    mt_texture_destroy(t);
+    mt_texture_destroy(f);
 }
 
 /* The point-sampled checkerboard: tex1 where floor(s) + floor(t) is even. */
@@ -120,10 +120,10 @@ static void test_checker_unfiltered(void)
     t_check(bad == 0, "checkerboard 2D none: tex1 on even floor(s) + floor(t)", "%d wrong", bad);
     t_check(bad_cf == 0, "checkerboard 2D closedform: point sample without differentials",
             "%d wrong", bad_cf);
-    mt_texture_release(none);
-    mt_texture_release(cf);
-    mt_texture_release(one);
-    mt_texture_release(zero);
+    mt_texture_destroy(none);
+    mt_texture_destroy(cf);
+    mt_texture_destroy(one);
+    mt_texture_destroy(zero);
 }
 
 /* scale and mix: the products and blends of their children, nested. */
@@ -157,18 +157,18 @@ static void test_compositions(void)
     t_check(worst < 1e-6, "scale and mix: products and blends of their children, nested",
             "error %g", worst);
     t_check(worst_f == 0, "scale: float variant multiplies", "error %g", worst_f);
-    mt_texture_release(mx);
-    mt_texture_release(sc);
-    mt_texture_release(checker);
-    mt_texture_release(fs);
+    mt_texture_destroy(mx);
+    mt_texture_destroy(sc);
+    mt_texture_destroy(checker);
+    mt_texture_destroy(fs);
     /* the children are still referenced by nothing but these: releasing the
      * composites first must not have freed them (ASan checks this) */
     t_check(mt_texture_eval_float(amount, &(mt_diffgeom){0}) == 0,
             "scale and mix: children outlive released parents", "-");
-    mt_texture_release(amount);
-    mt_texture_release(a);
-    mt_texture_release(b);
-    mt_texture_release(two);
+    mt_texture_destroy(amount);
+    mt_texture_destroy(a);
+    mt_texture_destroy(b);
+    mt_texture_destroy(two);
 }
 
 /* The 3D checkerboard: tex1 where floor(x) + floor(y) + floor(z) is even in
@@ -203,11 +203,11 @@ static void test_checker3d(void)
             "%d wrong", bad_v2);
     t_check(bad_fix == 0, "checkerboard 3D, corrected: Scale 2 2 2 doubles the checks' size",
             "%d wrong", bad_fix);
-    mt_texture_release(t);
-    mt_texture_release(tv2);
-    mt_texture_release(tfix);
-    mt_texture_release(one);
-    mt_texture_release(zero);
+    mt_texture_destroy(t);
+    mt_texture_destroy(tv2);
+    mt_texture_destroy(tfix);
+    mt_texture_destroy(one);
+    mt_texture_destroy(zero);
 }
 
 /* pbrt-v2's dots, recomputed in double from its definition (dots.h): the
@@ -253,10 +253,10 @@ static void test_dots(void)
             "%d of %d wrong, %d on dots", bad, n, dots);
     t_check(swapped == 0, "dots, pbrt-v2 mode: \"inside\" drawn around the dots (dots-inside)",
             "%d of %d differ", swapped, n);
-    mt_texture_release(fixed);
-    mt_texture_release(v2);
-    mt_texture_release(in);
-    mt_texture_release(out);
+    mt_texture_destroy(fixed);
+    mt_texture_destroy(v2);
+    mt_texture_destroy(in);
+    mt_texture_destroy(out);
 }
 
 static void map_at(const mt_map2d *m, mt_vec3 p, mt_st *st)
@@ -500,8 +500,8 @@ static void test_marble(void)
         if (!mt_rgb_is_finite(a) || mt_rgb_min(a) < 0) finite = 0;
     }
     t_check(finite, "marble: finite and non-negative", "-");
-    mt_texture_release(v2);
-    mt_texture_release(fix);
+    mt_texture_destroy(v2);
+    mt_texture_destroy(fix);
 }
 
 static void test_table(void)
@@ -518,9 +518,9 @@ static void test_table(void)
     mt_texture_table_set(t, "x", f2, &err);
     t_check(mt_texture_table_get(t, "x", 1) == f2 && mt_texture_table_get(c, "x", 1) == f,
             "texture table: a clone keeps its bindings when the original changes", "-");
-    mt_texture_release(f);
-    mt_texture_release(s);
-    mt_texture_release(f2);
+    mt_texture_destroy(f);
+    mt_texture_destroy(s);
+    mt_texture_destroy(f2);
     mt_texture_table_destroy(t);
     /* the clone's references keep f and s alive (ASan would catch a use after free) */
     t_check(mt_texture_eval_float(mt_texture_table_get(c, "x", 1), &dg) == 1 &&
@@ -539,7 +539,7 @@ static void test_alloc_failures(void)
         mt_status st;
         if (!t || !f) {
             mt_texture_table_destroy(t);
-            mt_texture_release(f);
+            mt_texture_destroy(f);
             continue;
         }
         mt_texture_table_set(t, "a", f, &err);
@@ -550,7 +550,7 @@ static void test_alloc_failures(void)
         if (st != MT_OK && st != MT_ERR_NOMEM) ok = 0;
         mt_texture_table_destroy(c);
         mt_texture_table_destroy(t);
-        mt_texture_release(f);
+        mt_texture_destroy(f);
     }
     mt_alloc_fail_after(0);
     ok = ok && tu_const(1, 1, 1, 1) == NULL;
@@ -586,8 +586,8 @@ static void test_rejections(void)
             err.message);
     t_check(mt__tex_mix(1, f, f, s, PV2, &err) == NULL && !strcmp(err.param, "amount"),
             "mix: a spectrum amount is rejected", "%s", err.message);
-    mt_texture_release(f);
-    mt_texture_release(s);
+    mt_texture_destroy(f);
+    mt_texture_destroy(s);
 }
 
 /* --- the same bits from every thread --- */
@@ -696,10 +696,10 @@ static void test_threads(void)
     for (k = 0; k < NPTS * NTEX; ++k)
         if (!mt_rgb_is_finite(r0[k])) break;
     t_check(k == NPTS * NTEX, "textures: no NaN or Inf over every class and mapping", "at %d", k);
-    for (k = NTEX - 1; k >= 0; --k) mt_texture_release(all[k]);
-    mt_texture_release(a);
-    mt_texture_release(b);
-    mt_texture_release(fa);
+    for (k = NTEX - 1; k >= 0; --k) mt_texture_destroy(all[k]);
+    mt_texture_destroy(a);
+    mt_texture_destroy(b);
+    mt_texture_destroy(fa);
     free(r0);
     free(r1);
     free(r2);

@@ -207,7 +207,7 @@ int main(int argc, char **argv)
         n = t_blockstats(&img, stats, T_BLOCKSTAT_MAX);
         if (k == 1) fprintf(f, "renders %d spp %d stats %d\n", renders, spp, n);
         for (i = 0; i < n; ++i) fprintf(f, "%.9g%c", stats[i], i + 1 < n ? ' ' : '\n');
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     if (fclose(f) != 0 || n == 0) {
         fprintf(stderr, "%s: cannot write %s\n", prog, tmp);
@@ -222,8 +222,8 @@ int main(int argc, char **argv)
         if ((st = mt_render_write(out, &mean, s, &o, &err)) == MT_OK &&
             (st = mt_render_write(var_path, &var, s, &o, &err)) != MT_OK)
             remove(out);
-        mt_image_free(&mean);
-        mt_image_free(&var);
+        mt_image_destroy(&mean);
+        mt_image_destroy(&var);
     }
     mt_imgacc_destroy(acc);
     mt_scene_destroy(s);

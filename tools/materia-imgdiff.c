@@ -155,10 +155,10 @@ static int heatmap(const args *a, const mt_image *blocks, int w, int h, double v
     mt_error_clear(&err);
     if (mt_imgcmp_heatmap(blocks, a->block, w, h, vmax, 1, &out, &err) != MT_OK) return !fail(&err);
     if (mt_image_write(a->heatmap, &out, NULL, 0, &err) != MT_OK) {
-        mt_image_free(&out);
+        mt_image_destroy(&out);
         return !fail(&err);
     }
-    mt_image_free(&out);
+    mt_image_destroy(&out);
     printf("heatmap %s (%s, 0 to %g)\n", a->heatmap, a->heatmap_z ? "|z|" : "relative difference",
            vmax);
     return 1;
@@ -224,7 +224,7 @@ static int compare(const args *a, mt_image im[4])
         if (!a->heatmap_z && mt_imgcmp_reldiff_blocks(&im[0], &im[1], a->block, &blocks, &err) != MT_OK)
             return fail(&err);
         k = heatmap(a, &blocks, im[0].width, im[0].height, vmax);
-        mt_image_free(&blocks);
+        mt_image_destroy(&blocks);
         if (!k) return 1;
     }
     if (a->fail_above >= 0 && nm.mean > a->fail_above) {
@@ -247,7 +247,7 @@ int main(int argc, char **argv)
         status = 1;
     else
         status = compare(&a, im);
-    for (k = 0; k < 4; ++k) mt_image_free(&im[k]);
+    for (k = 0; k < 4; ++k) mt_image_destroy(&im[k]);
     if (fflush(stdout) != 0 && status == 0) status = 1;
     return status;
 }

@@ -335,15 +335,15 @@ static int write_raw(const char *prefix, const char *row, const char *what, floa
     mt_error err;
     int x, y;
     snprintf(path, sizeof path, "%s-%s-%s.pfm", prefix, row, what);
-    if (mt_image_alloc(&img, LL_W, LL_H, 1, &err)) return 0;
+    if (mt_image_create(&img, LL_W, LL_H, 1, &err)) return 0;
     for (y = 0; y < LL_H; ++y)
         for (x = 0; x < LL_W; ++x) img.data[y * LL_W + x] = m[y][x];
     if (mt_image_write(path, &img, NULL, 0, &err)) {
         fprintf(stderr, "%s: %s\n", prog, err.message);
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         return 0;
     }
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     return 1;
 }
 
@@ -480,7 +480,7 @@ int main(int argc, char **argv)
     lines_stmt = (int)((strlen(statements) + (size_t)per_line - 1) / (size_t)per_line);
     if (lines_stmt < 1) lines_stmt = 1;
     height = LOBE_HEIGHT(nimpl, lines_stmt, rows);
-    if (mt_image_alloc(&img, width, height, 3, &err)) die("%s%s", err.message, "");
+    if (mt_image_create(&img, width, height, 3, &err)) die("%s%s", err.message, "");
     for (i = 0; i < width * height * 3; ++i) img.data[i] = 0.02f;
     snprintf(header[0], sizeof header[0], "materia-lobe  mode %s  wo theta %g phi %g deg  %ld samples", mode, theta, phi,
              samples);
@@ -525,7 +525,7 @@ int main(int argc, char **argv)
         if (m[i].q) mt_query_destroy(m[i].q);
         else pc_stop(&m[i].child);
     }
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     free(statements);
     printf("%s: %dx%d\n", out, width, height);
     return 0;

@@ -158,15 +158,15 @@ int main(int argc, char **argv)
         return fail(&err);
     }
     if (var_path && mt_render_write(var_path, &var, s, &o, &err) != MT_OK) {
-        mt_image_free(&img);
-        mt_image_free(&var);
+        mt_image_destroy(&img);
+        mt_image_destroy(&var);
         mt_scene_destroy(s);
         return fail(&err);
     }
     if (mt_render_write(out, &img, s, &o, &err) != MT_OK) {
         if (var_path) remove(var_path); /* nothing written on failure */
-        mt_image_free(&img);
-        if (var_path) mt_image_free(&var);
+        mt_image_destroy(&img);
+        if (var_path) mt_image_destroy(&var);
         mt_scene_destroy(s);
         return fail(&err);
     }
@@ -180,8 +180,8 @@ int main(int argc, char **argv)
     if (stats.rejected || stats.shading_failures)
         fprintf(stderr, "materia-render: %ld samples set to black (NaN, Inf or negative), %ld "
                         "path vertices without a BSDF\n", stats.rejected, stats.shading_failures);
-    mt_image_free(&img);
-    if (var_path) mt_image_free(&var);
+    mt_image_destroy(&img);
+    if (var_path) mt_image_destroy(&var);
     mt_scene_destroy(s);
     return 0;
 }

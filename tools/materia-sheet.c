@@ -146,10 +146,10 @@ int main(int argc, char **argv)
             fprintf(stderr, "%s: %s\n", prog, err.message);
             status = 1;
         }
-        mt_image_free(&sheet);
+        mt_image_destroy(&sheet);
     }
     for (i = 0; i <= n && i < argc; ++i) {
-        mt_image_free(&images[i]);
+        mt_image_destroy(&images[i]);
         free(labels[i]);
     }
     free(entries);

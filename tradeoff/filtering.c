@@ -267,7 +267,7 @@ static void imagemap(const char *out, int quick)
         amp += waves[i].a;
     }
     wave_scale = 0.5 / amp;
-    if (mt_image_alloc(&img, TEX_N, TEX_N, 1, &err) != MT_OK) die("image", &err);
+    if (mt_image_create(&img, TEX_N, TEX_N, 1, &err) != MT_OK) die("image", &err);
     for (y = 0; y < TEX_N; y++)
         for (x = 0; x < TEX_N; x++)
             img.data[y * TEX_N + x] = (float)pattern((x + 0.5) / TEX_N, (y + 0.5) / TEX_N);
@@ -303,7 +303,7 @@ static void imagemap(const char *out, int quick)
     close_tmp(f, path);
     for (mi = 0; mi < nm; mi++)
         if (modes[mi].kind != M_SS) mt_mipmap_destroy(modes[mi].m);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     free(fp);
     free(tf);
     free(tp);
@@ -415,8 +415,8 @@ static void checker(const char *out, int quick)
         }
     fprintf(stderr, "filtering: checkerboard done\n");
     close_tmp(f, path);
-    mt_texture_release(none);
-    mt_texture_release(closed);
+    mt_texture_destroy(none);
+    mt_texture_destroy(closed);
     mt_texture_table_destroy(table);
     free(fp);
     free(tf);

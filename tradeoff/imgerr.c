@@ -83,7 +83,7 @@ static int read_all(int n, char **paths, mt_image *img)
 static void free_all(int n, mt_image *img)
 {
     int k;
-    for (k = 0; k < n; k++) mt_image_free(&img[k]);
+    for (k = 0; k < n; k++) mt_image_destroy(&img[k]);
 }
 
 /* imgerr --variance-check REF VAR REF2 VAR2 */
@@ -155,8 +155,8 @@ int main(int argc, char **argv)
         printf(" NA\n");
     free(rel);
     if (pair) {
-        mt_image_free(&b);
-        mt_image_free(&vb);
+        mt_image_destroy(&b);
+        mt_image_destroy(&vb);
     }
     free_all(nin, img);
     return 0;

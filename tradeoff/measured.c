@@ -312,7 +312,7 @@ static void analytic(const char *out, int quick)
             fprintf(f, "%s,irregular,%d,%d,%.2f,%.5g,%.5g\n", name, ns[i], ns[i] * 24, time_f(x, &p),
                     rel_rms(x, &p, tv), rel_median(x, &p, tv));
             fprintf(stderr, "measured: %s irregular %d done\n", name, ns[i]);
-            mt_measured_release(m);
+            mt_measured_destroy(m);
         }
         full = tabulate(b);
         for (i = 0; i < nks; i++) {
@@ -327,7 +327,7 @@ static void analytic(const char *out, int quick)
             /* the MERL file holds three doubles a bin */
             fprintf(f, "%s,merl,%d,%ld,%.2f,%.5g,%.5g\n", name, 90 / k, 24 * bins, time_f(x, &p),
                     rel_rms(x, &p, tv), rel_median(x, &p, tv));
-            mt_measured_release(m);
+            mt_measured_destroy(m);
             if (t != full) free(t);
         }
         fprintf(stderr, "measured: %s tables done\n", name);
@@ -379,8 +379,8 @@ static void files(const char *out, const char *dir, int quick)
         fprintf(stderr, "measured: %s done\n", names[i]);
         free(tv);
         free(rgb);
-        mt_measured_release(t);
-        mt_measured_release(m);
+        mt_measured_destroy(t);
+        mt_measured_destroy(m);
         mt_arena_destroy(a);
     }
     mt_measured_cache_clear();

@@ -33,9 +33,9 @@ typedef struct mt_image {
 } mt_image;
 
 /* Allocates a zeroed image; MT_ERR_NOMEM or MT_ERR_INVALID (bad size). */
-MT_API mt_status mt_image_alloc(mt_image *img, int width, int height, int channels,
+MT_API mt_status mt_image_create(mt_image *img, int width, int height, int channels,
                                 mt_error *err);
-MT_API void mt_image_free(mt_image *img);
+MT_API void mt_image_destroy(mt_image *img);
 
 /* Reads .exr, .png or .pfm (by extension, case-insensitive) as described
  * above: the file's own values (mt_image_read_mode with every fix). Tools

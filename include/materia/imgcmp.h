@@ -82,7 +82,7 @@ MT_API mt_status mt_imgcmp_pixel_errors(const mt_image *a, const mt_image *b,
 /* Per block and colour channel |a - b| / (|b| + 0.01), as an image of
  * blocks_x x blocks_y pixels (one per block) with one or three channels:
  * the values pbrt-v2's metric summarizes, for a heat map. *map is allocated
- * (free it with mt_image_free). */
+ * (free it with mt_image_destroy). */
 MT_API mt_status mt_imgcmp_reldiff_blocks(const mt_image *a, const mt_image *b, int block,
                                           mt_image *map, mt_error *err);
 

@@ -51,7 +51,7 @@ MT_API mt_material *mt_material_create(const char *type, const mt_transform *mtl
                                        mt_error *err);
 
 MT_API mt_material *mt_material_retain(mt_material *m);
-MT_API void mt_material_release(mt_material *m);
+MT_API void mt_material_destroy(mt_material *m);
 MT_API const char *mt_material_type(const mt_material *m);
 MT_API mt_mode mt_material_mode(const mt_material *m);
 

@@ -88,7 +88,7 @@ MT_API void mt_measured_cache_clear(void);
 MT_API int mt_measured_cache_size(void);
 
 MT_API mt_measured *mt_measured_retain(mt_measured *m);
-MT_API void mt_measured_release(mt_measured *m);
+MT_API void mt_measured_destroy(mt_measured *m);
 MT_API mt_measured_kind mt_measured_kind_of(const mt_measured *m);
 /* The number of samples: direction pairs, or table entries. */
 MT_API int mt_measured_count(const mt_measured *m);

@@ -10,7 +10,7 @@
  *   mt_render_stats st;
  *   mt_scene_render(s, &o, &img, &var, &st, &err);    -- var may be NULL
  *   mt_render_write("out.exr", &img, s, &o, &err);    -- spp and seed in the header
- *   mt_image_free(&img); mt_image_free(&var); mt_scene_destroy(s);
+ *   mt_image_destroy(&img); mt_image_destroy(&var); mt_scene_destroy(s);
  *
  * or, in one call, mt_render_file(path, &o, &img, &var, &st, &err).
  *

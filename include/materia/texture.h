@@ -41,7 +41,7 @@ MT_API mt_rgb mt_texture_eval_rgb(const mt_texture *t, const mt_diffgeom *dg);
 MT_API int mt_texture_is_float(const mt_texture *t);
 MT_API const char *mt_texture_class(const mt_texture *t);
 MT_API mt_texture *mt_texture_retain(mt_texture *t);
-MT_API void mt_texture_release(mt_texture *t);
+MT_API void mt_texture_destroy(mt_texture *t);
 
 /* Constant textures (what a plain value in a material's parameters becomes). */
 MT_API mt_texture *mt_texture_constant_float(mt_real v, mt_error *err);

@@ -63,14 +63,14 @@ static void *load(void *ctx, mt_error *err)
     if (mt_image_read_mode(ti->path, ti->mode, &img, err) != MT_OK) return NULL;
     texels = convert_texels(&img, ti->scale, ti->gamma, ti->float_texture);
     if (!texels) {
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", ti->path);
         return NULL;
     }
     m = mt__mipmap_create_raw(img.width, img.height, ti->float_texture ? 1 : 3, texels,
                               ti->trilinear, ti->maxaniso, ti->wrap, ti->mode, err);
     mt__free(texels);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     return m;
 }
 

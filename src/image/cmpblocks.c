@@ -100,7 +100,7 @@ double mt__reldiff(double a, double b) { return fabs(a - b) / (fabs(b) + MT_IMGC
 mt_status mt__blocks_image(const double *v, const mt__grid *g, mt_image *out, mt_error *err)
 {
     size_t n = (size_t)g->bx * (size_t)g->by * (size_t)g->nc, k;
-    mt_status st = mt_image_alloc(out, g->bx, g->by, g->nc, err);
+    mt_status st = mt_image_create(out, g->bx, g->by, g->nc, err);
     if (st != MT_OK) return st;
     for (k = 0; k < n; ++k) out->data[k] = (float)v[k];
     return MT_OK;

@@ -383,7 +383,7 @@ static mt_status allocate(exr_reader *r, mt_image *img, mt_error *err)
                             "than materia's limit of %.0f MiB",
                             r->path, r->width, r->height, chl->num_channels, need / (1 << 20),
                             (double)MT__IMAGE_MAX_BYTES / (1 << 20));
-    st = mt_image_alloc(img, r->width, r->height, r->channels, err);
+    st = mt_image_create(img, r->width, r->height, r->channels, err);
     if (st != MT_OK) return st;
     r->planes = mt__malloc(r->planes_bytes ? r->planes_bytes : 1);
     if (!r->planes) return mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", r->path);

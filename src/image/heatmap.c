@@ -68,7 +68,7 @@ mt_status mt_imgcmp_heatmap(const mt_image *blocks, int block, int width, int he
     if (!(vmax > 0) || !isfinite(vmax))
         return mt_error_param(err, MT_ERR_INVALID, "vmax",
                               "the top of the scale must be positive, not %g", vmax);
-    if ((st = mt_image_alloc(out, width, height + (bar ? BAR_HEIGHT : 0), 3, err)) != MT_OK)
+    if ((st = mt_image_create(out, width, height + (bar ? BAR_HEIGHT : 0), 3, err)) != MT_OK)
         return st;
     nc = blocks->channels == 1 ? 1 : 3;
     for (y = 0; y < height; ++y)

@@ -28,10 +28,10 @@ mt_status mt__image_check_size(const char *path, long long w, long long h, int c
     return MT_OK;
 }
 
-mt_status mt_image_alloc(mt_image *img, int width, int height, int channels, mt_error *err)
+mt_status mt_image_create(mt_image *img, int width, int height, int channels, mt_error *err)
 {
     size_t n;
-    if (!img) return mt_error_set(err, MT_ERR_INVALID, "mt_image_alloc: no image");
+    if (!img) return mt_error_set(err, MT_ERR_INVALID, "mt_image_create: no image");
     img->width = img->height = img->channels = 0;
     img->data = NULL;
     if (channels != 1 && channels != 3 && channels != 4)
@@ -52,7 +52,7 @@ mt_status mt_image_alloc(mt_image *img, int width, int height, int channels, mt_
     return MT_OK;
 }
 
-void mt_image_free(mt_image *img)
+void mt_image_destroy(mt_image *img)
 {
     if (!img) return;
     mt__free(img->data);
@@ -104,7 +104,7 @@ mt_status mt_image_read_mode(const char *path, mt_mode mode, mt_image *img, mt_e
         return mt_error_set(err, MT_ERR_UNSUPPORTED,
                             "%s: unknown image type (materia reads .exr, .png and .pfm)", path);
     }
-    if (st != MT_OK) mt_image_free(img);
+    if (st != MT_OK) mt_image_destroy(img);
     return st;
 }
 

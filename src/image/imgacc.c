@@ -100,11 +100,11 @@ mt_status mt_imgacc_finish(const mt_imgacc *acc, mt_image *mean, mt_image *var_o
                                 "pixel (%d, %d) has %ld sample%s: a variance needs two or more",
                                 (int)(p % (size_t)acc->width), (int)(p / (size_t)acc->width),
                                 acc->n[p], acc->n[p] == 1 ? "" : "s");
-    if (mean && (st = mt_image_alloc(mean, acc->width, acc->height, acc->channels, err)) != MT_OK)
+    if (mean && (st = mt_image_create(mean, acc->width, acc->height, acc->channels, err)) != MT_OK)
         return st;
     if (var_of_mean &&
-        (st = mt_image_alloc(var_of_mean, acc->width, acc->height, acc->channels, err)) != MT_OK) {
-        if (mean) mt_image_free(mean);
+        (st = mt_image_create(var_of_mean, acc->width, acc->height, acc->channels, err)) != MT_OK) {
+        if (mean) mt_image_destroy(mean);
         return st;
     }
     for (p = 0; p < np; ++p) {

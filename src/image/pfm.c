@@ -142,7 +142,7 @@ mt_status mt__pfm_read(const char *path, mt_mode mode, mt_image *img, mt_error *
                           "has %lld",
                           path, w, h, (unsigned long long)w * (unsigned long long)h * (unsigned)channels * 4,
                           file_size - (long long)pos);
-    if (st == MT_OK) st = mt_image_alloc(img, (int)w, (int)h, channels, err);
+    if (st == MT_OK) st = mt_image_create(img, (int)w, (int)h, channels, err);
     if (st == MT_OK)
         st = read_pixels(f, path, (long)pos, file_size, scale, (mode & MT_FIX_PFM_ROWS) != 0,
                          img, err);

@@ -152,7 +152,7 @@ static int read_inner(png_state *s)
                      (double)MT__IMAGE_MAX_BYTES / (1 << 20));
             return 0;
         }
-        s->status = mt_image_alloc(s->img, (int)w, (int)h, channels, NULL);
+        s->status = mt_image_create(s->img, (int)w, (int)h, channels, NULL);
     }
     if (s->status == MT_OK) {
         s->pixels = mt__malloc(rowbytes * h);

@@ -104,7 +104,7 @@ mt_status mt_sheet_make(const mt_sheet_entry *entries, int n, const mt_sheet_opt
                             ws, hs);
     w = (int)ws;
     h = (int)hs;
-    if ((st = mt_image_alloc(out, w, h, 3, err)) != MT_OK) return st;
+    if ((st = mt_image_create(out, w, h, 3, err)) != MT_OK) return st;
     for (k = 0; k < (size_t)w * (size_t)h * 3; ++k) out->data[k] = SHEET_BACKGROUND;
     scale = (float)pow(2.0, o.exposure);
     for (i = 0; i < n; ++i) {

@@ -63,7 +63,7 @@ mt_material *mt_material_from_state(const mt_state *s, const mt_paramset *shape_
     r.err = err;
     mt_state_material(s, &spec);
     m = from_spec(&r, &spec, shape_params);
-    for (i = 0; i < r.nmade; ++i) mt_material_release(r.made[i]);
+    for (i = 0; i < r.nmade; ++i) mt_material_destroy(r.made[i]);
     return m;
 }
 
@@ -78,6 +78,6 @@ mt_material *mt_material_named_from_state(const mt_state *s, const char *name, m
     r.state = s;
     r.err = err;
     m = from_spec(&r, &spec, NULL);
-    for (i = 0; i < r.nmade; ++i) mt_material_release(r.made[i]);
+    for (i = 0; i < r.nmade; ++i) mt_material_destroy(r.made[i]);
     return m;
 }

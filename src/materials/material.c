@@ -136,7 +136,7 @@ void *mt__material_new_with(size_t size, const mt_material_ops *ops, const mt_te
             snprintf(msg, sizeof msg, "%s", err->message);
             snprintf(err->message, sizeof err->message, "%s material: %.480s", ops->type, msg);
         }
-        mt_material_release(m);
+        mt_material_destroy(m);
         return NULL;
     }
     return m;
@@ -148,13 +148,13 @@ mt_material *mt_material_retain(mt_material *m)
     return m;
 }
 
-void mt_material_release(mt_material *m)
+void mt_material_destroy(mt_material *m)
 {
     int i;
     if (!m || __atomic_sub_fetch(&m->refs, 1, __ATOMIC_ACQ_REL) != 0) return;
     if (m->ops->destroy) m->ops->destroy(m);
-    mt_texture_release(m->bump);
-    for (i = 0; i < MT_MATERIAL_SLOTS; ++i) mt_texture_release(m->tex[i]);
+    mt_texture_destroy(m->bump);
+    for (i = 0; i < MT_MATERIAL_SLOTS; ++i) mt_texture_destroy(m->tex[i]);
     mt__free(m);
 }
 

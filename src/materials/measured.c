@@ -23,7 +23,7 @@ static mt_status measured_add(const mt_material *m, mt_bsdf *b, const mt_diffgeo
     return mt_bsdf_add(b, mt_irregular_isotropic_brdf_create(a, m->mode, d, err), err);
 }
 
-static void measured_destroy(mt_material *m) { mt_measured_release(((measured_material *)m)->data); }
+static void measured_destroy(mt_material *m) { mt_measured_destroy(((measured_material *)m)->data); }
 
 static const mt_param_doc other[] = {
     {"filename", "string", "(required)", "a readable file",
@@ -53,7 +53,7 @@ mt_material *mt__measured_create(const mt_transform *xf, const mt_texparams *tp,
             snprintf(err->message, sizeof err->message, "measured material: %.480s", msg);
             snprintf(err->param, sizeof err->param, "filename");
         }
-        mt_material_release(&m->base);
+        mt_material_destroy(&m->base);
         return NULL;
     }
     return &m->base;

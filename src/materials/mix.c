@@ -66,8 +66,8 @@ int mt__mix_is_uniform(const mt_material *m)
 static void mix_destroy(mt_material *m)
 {
     mix *x = (mix *)m;
-    mt_material_release(x->m1);
-    mt_material_release(x->m2);
+    mt_material_destroy(x->m1);
+    mt_material_destroy(x->m2);
 }
 
 const mt_material_ops mt__mix_ops = {"mix", mix_max, NULL, NULL, NULL, mix_destroy, mix_get_bsdf, slots, 1, NULL, other, 2};
@@ -98,14 +98,14 @@ mt_material *mt__mix_create(const mt_transform *xf, const mt_texparams *tp, cons
     mix *x = mt__material_new(sizeof *x, &mt__mix_ops, tp, err);
     if (!x) return NULL;
     if (!(x->m1 = named(tp, ctx, "namedmaterial1", err)) || !(x->m2 = named(tp, ctx, "namedmaterial2", err))) {
-        mt_material_release(&x->base);
+        mt_material_destroy(&x->base);
         return NULL;
     }
     if (mix_max(&x->base) > MT_MAX_BXDFS) {
         mt_error_set(err, MT_ERR_LIMIT,
                      "mix material: \"%s\" and \"%s\" can make %d BxDFs together, more than a BSDF holds (%d)",
                      mt_material_type(x->m1), mt_material_type(x->m2), mix_max(&x->base), MT_MAX_BXDFS);
-        mt_material_release(&x->base);
+        mt_material_destroy(&x->base);
         return NULL;
     }
     return &x->base;

@@ -32,7 +32,7 @@ static void *read_file(void *ctx, mt_error *err)
 }
 
 static void *retain(void *m) { return mt_measured_retain(m); }
-static void release(void *m) { mt_measured_release(m); }
+static void release(void *m) { mt_measured_destroy(m); }
 
 static mt__cache cache = MT__CACHE_INIT(retain, release);
 

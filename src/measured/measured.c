@@ -33,7 +33,7 @@ mt_measured *mt__measured_irregular(mt_real *points, mt_rgb *values, int n, mt_e
     /* the first search of IrregIsotropicBRDF::f is answered from the grid */
     if (mt__kdtree_build(&m->tree, points, n, err) != MT_OK ||
         mt__kdtree_index(&m->tree, MT__IRREG_WIDE_D2, err) != MT_OK) {
-        mt_measured_release(m);
+        mt_measured_destroy(m);
         return NULL;
     }
     return m;
@@ -115,7 +115,7 @@ mt_measured *mt_measured_retain(mt_measured *m)
     return m;
 }
 
-void mt_measured_release(mt_measured *m)
+void mt_measured_destroy(mt_measured *m)
 {
     if (!m || __atomic_sub_fetch(&m->refs, 1, __ATOMIC_ACQ_REL) != 0) return;
     mt__kdtree_free(&m->tree);

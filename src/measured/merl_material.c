@@ -66,7 +66,7 @@ static mt_status tabulate_material(const apply_ctx *a, const mt_merl_options *op
     }
     mt__free(values);
     if (arena) mt_arena_destroy(arena);
-    mt_material_release(m);
+    mt_material_destroy(m);
     return st;
 }
 

@@ -63,7 +63,7 @@ mt_status mt__state_texture(mt_state *s, const mt_statement *st, mt_error *err)
         return located(st, err, err ? err->status : MT_ERR_INVALID);
     }
     rc = mt_texture_table_set(s->g.textures, name, tex, err);
-    mt_texture_release(tex); /* the table holds its own reference */
+    mt_texture_destroy(tex); /* the table holds its own reference */
     if (rc != MT_OK) return located(st, err, rc);
     mt_paramset_report_unused(st->params, s->warn, s->warn_ctx);
     return MT_OK;

@@ -83,7 +83,7 @@ mt_query *mt_query_create(const char *dir, mt_error *err)
 void mt_query_destroy(mt_query *q)
 {
     if (!q) return;
-    mt_material_release(q->material);
+    mt_material_destroy(q->material);
     mt_state_destroy(q->state);
     mt_arena_destroy(q->arena);
     mt__free(q->dir);
@@ -149,7 +149,7 @@ static mt_status apply(void *ctx, const mt_statement *st, mt_error *err)
             if (!err->file[0]) mt_error_locate(err, st->file, st->line, st->column);
             return err->status;
         }
-        mt_material_release(m);
+        mt_material_destroy(m);
         mt_error_clear(err);
         /* what the material did not read, as the renderer reports it */
         if (named ? mt_state_named_material(a->q->state, st->args[0].string, &spec, err) == MT_OK
@@ -175,7 +175,7 @@ static int statement(mt_query *q, const char *text, int first_line, char *out, s
 static const mt_material *material(mt_query *q, mt_error *err)
 {
     if (q->dirty) {
-        mt_material_release(q->material);
+        mt_material_destroy(q->material);
         q->material = mt_material_from_state(q->state, NULL, err);
         q->dirty = 0;
         if (!q->material) q->dirty = 1; /* try again next time: say why each time */

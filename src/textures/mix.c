@@ -24,7 +24,7 @@ static mt_rgb mix_rgb(const mt_texture *t, const mt_diffgeom *dg)
 static void mix_finalize(mt_texture *t)
 {
     mt__pair_finalize(t);
-    mt_texture_release(((mix *)t)->amount);
+    mt_texture_destroy(((mix *)t)->amount);
 }
 
 static const mt_texture_ops mix_ops = {"mix", mix_float, mix_rgb, mix_finalize};

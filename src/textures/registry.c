@@ -110,9 +110,9 @@ static int get_children(const mt_texparams *tp, int is_float, const char *na, mt
 
 static void put_children(children *c)
 {
-    mt_texture_release(c->a);
-    mt_texture_release(c->b);
-    mt_texture_release(c->amount);
+    mt_texture_destroy(c->a);
+    mt_texture_destroy(c->b);
+    mt_texture_destroy(c->amount);
 }
 
 static mt_texture *create_scale(int is_float, const mt_transform *tex2world,

@@ -46,7 +46,7 @@ mt_texture *mt_texture_retain(mt_texture *t)
     return t;
 }
 
-void mt_texture_release(mt_texture *t)
+void mt_texture_destroy(mt_texture *t)
 {
     if (!t || __atomic_sub_fetch(&t->refs, 1, __ATOMIC_ACQ_REL) != 0) return;
     if (t->ops->finalize) t->ops->finalize(t);
@@ -134,7 +134,7 @@ static void space_clear(space *s)
     int i;
     for (i = 0; i < s->n; ++i) {
         mt__free(s->e[i].name);
-        mt_texture_release(s->e[i].tex);
+        mt_texture_destroy(s->e[i].tex);
     }
     mt__free(s->e);
     s->e = NULL;
@@ -198,7 +198,7 @@ mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture
     e = space_find(s, name);
     if (e) { /* pbrt-v2 replaces a redefined texture (with a warning the state gives) */
         mt_texture_retain(tex);
-        mt_texture_release(e->tex);
+        mt_texture_destroy(e->tex);
         e->tex = tex;
         return MT_OK;
     }
@@ -250,8 +250,8 @@ void *mt__pair_alloc(size_t size, const mt_texture_ops *ops, int is_float, mt_te
 void mt__pair_finalize(mt_texture *t)
 {
     mt__pair_tex *p = (mt__pair_tex *)t;
-    mt_texture_release(p->tex1);
-    mt_texture_release(p->tex2);
+    mt_texture_destroy(p->tex1);
+    mt_texture_destroy(p->tex2);
 }
 
 mt_real mt__pair_pick_float(const mt_texture *t, const mt_diffgeom *dg)

@@ -170,10 +170,10 @@ mt_status mt__film_develop(const mt__film *f, const mt__film_buf *b, mt_image *i
 {
     size_t i, n = (size_t)f->width * (size_t)f->height;
     int c;
-    mt_status st = mt_image_alloc(img, f->width, f->height, 3, err);
+    mt_status st = mt_image_create(img, f->width, f->height, 3, err);
     if (st != MT_OK) return st;
-    if (var && (st = mt_image_alloc(var, f->width, f->height, 3, err)) != MT_OK) {
-        mt_image_free(img);
+    if (var && (st = mt_image_create(var, f->width, f->height, 3, err)) != MT_OK) {
+        mt_image_destroy(img);
         return st;
     }
     for (i = 0; i < n; ++i) {

@@ -35,14 +35,14 @@ static mt_status map_init(mt__light *l, const char *path, mt_mode mode, mt_error
     if (img.channels != 3) {
         /* gray or RGBA: keep the RGB (gray repeated), as pbrt-v2's ReadImage */
         mt_image rgb;
-        if ((st = mt_image_alloc(&rgb, img.width, img.height, 3, err)) != MT_OK) {
-            mt_image_free(&img);
+        if ((st = mt_image_create(&rgb, img.width, img.height, 3, err)) != MT_OK) {
+            mt_image_destroy(&img);
             return st;
         }
         for (i = 0; i < (size_t)img.width * (size_t)img.height; ++i)
             for (c = 0; c < 3; ++c)
                 rgb.data[3 * i + c] = img.data[i * (size_t)img.channels + (img.channels == 1 ? 0 : c)];
-        mt_image_free(&img);
+        mt_image_destroy(&img);
         img = rgb;
     }
     for (i = 0; i < (size_t)img.width * (size_t)img.height; ++i)
@@ -50,7 +50,7 @@ static mt_status map_init(mt__light *l, const char *path, mt_mode mode, mt_error
     w = img.width;
     h = img.height;
     l->map = mt_mipmap_create(&img, 0, 8, MT_WRAP_REPEAT, mode, err);
-    mt_image_free(&img);
+    mt_image_destroy(&img);
     if (!l->map) return err ? err->status : MT_ERR_NOMEM;
     lum = mt__malloc((size_t)w * (size_t)h * sizeof *lum);
     if (!lum) return mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory for the light's distribution", path);

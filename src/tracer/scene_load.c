@@ -295,7 +295,7 @@ static mt_status on_statement(void *ctx, const mt_statement *st, mt_error *err)
          * line even when no shape uses the material */
         mt_material *m = mt_material_named_from_state(ld->state, st->args[0].string, err);
         if (!m) return err->status;
-        mt_material_release(m);
+        mt_material_destroy(m);
     }
     if (handled) return MT_OK;
     if (slot) {
@@ -346,7 +346,7 @@ void mt_scene_destroy(mt_scene *s)
     mt_geometry_destroy(s->geom);
     for (i = 0; i < s->nlights; ++i) mt__light_free(&s->lights[i]);
     for (i = 0; i < s->nprims; ++i) mt__free(s->prims[i]);
-    for (i = 0; i < s->nmaterials; ++i) mt_material_release(s->materials[i]);
+    for (i = 0; i < s->nmaterials; ++i) mt_material_destroy(s->materials[i]);
     mt__free(s->lights);
     mt__free(s->prims);
     mt__free(s->materials);

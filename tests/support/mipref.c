@@ -48,7 +48,7 @@ double t_pattern_hessian_bound(const t_pattern *p)
 void t_pattern_image(const t_pattern *p, int n, mt_image *img)
 {
     int i, j;
-    mt_image_alloc(img, n, n, 1, NULL);
+    mt_image_create(img, n, n, 1, NULL);
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++)
             img->data[(size_t)j * (size_t)n + (size_t)i] =
@@ -58,7 +58,7 @@ void t_pattern_image(const t_pattern *p, int n, mt_image *img)
 void t_moment_image(int n, int which, double cx, double cy, mt_image *img)
 {
     int i, j;
-    mt_image_alloc(img, n, n, 1, NULL);
+    mt_image_create(img, n, n, 1, NULL);
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++) {
             double dx = (i + 0.5) / n - cx, dy = (j + 0.5) / n - cy;

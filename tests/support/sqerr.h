@@ -56,7 +56,7 @@ int t_sqerr_compute(const mt_image *a, const mt_image *va, const mt_image *b, co
 /* The reference of two independent renders of the same image, r1 and r2: the
  * mean (r1 + r2) / 2 and its variance estimate (r1 - r2)^2 / 4 per pixel and
  * channel (mt_imgacc of the two). 0, or -1 with the reason in msg; the caller
- * frees *mean and *var with mt_image_free. */
+ * frees *mean and *var with mt_image_destroy. */
 int t_sqerr_pair(const mt_image *r1, const mt_image *r2, mt_image *mean, mt_image *var, char *msg,
                  size_t msglen);
 

@@ -7,7 +7,7 @@ mt_image t_image_make(int w, int h, int nc, float v)
 {
     mt_image img;
     size_t k;
-    if (mt_image_alloc(&img, w, h, nc, NULL) != MT_OK) {
+    if (mt_image_create(&img, w, h, nc, NULL) != MT_OK) {
         fprintf(stderr, "out of memory for a %d x %d test image\n", w, h);
         exit(1);
     }

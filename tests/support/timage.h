@@ -8,7 +8,7 @@
 #include "materia/image.h"
 
 /* A w x h image of nc channels, every value v; exits the test when out of
- * memory (free it with mt_image_free). */
+ * memory (free it with mt_image_destroy). */
 mt_image t_image_make(int w, int h, int nc, float v);
 
 /* The first channel of pixel (x, y). */

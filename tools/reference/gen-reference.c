@@ -103,9 +103,9 @@ static void create(const char *cls, int is_material, int is_float, const char *n
     p->variant = is_float;
     mt__texparams_set_probe(on_lookup, p);
     if (is_material)
-        mt_material_release(mt_material_create(cls, NULL, &tp, NULL, &err));
+        mt_material_destroy(mt_material_create(cls, NULL, &tp, NULL, &err));
     else
-        mt_texture_release(mt_texture_create(cls, is_float, NULL, &tp, &err));
+        mt_texture_destroy(mt_texture_create(cls, is_float, NULL, &tp, &err));
     mt__texparams_set_probe(NULL, NULL);
     mt_paramset_destroy(ps);
     mt_texture_table_destroy(tt);
@@ -206,7 +206,7 @@ static void textures(void)
             tp.geom = NULL, tp.material = ps, tp.textures = tt, tp.mode = MT_MODE_PBRT_V2;
             t = mt_texture_create(classes[i], 1, NULL, &tp, &err);
             has_float = t || !strstr(err.message, "no float");
-            mt_texture_release(t);
+            mt_texture_destroy(t);
             mt_paramset_destroy(ps);
             mt_texture_table_destroy(tt);
         }
