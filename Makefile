@@ -405,11 +405,13 @@ TOOL_SUFFIX := $(if $(filter double,$(PRECISION)),-double)
 INSTALLED_TOOLS := $(notdir $(TOOLS) $(CONF_BIN))
 DOC_FILES := README.md LICENSE conformance/ERRATA.md $(sort $(wildcard docs/*.md))
 PUBLIC_HEADERS := $(sort $(notdir $(wildcard include/materia/*.h)) config.h)
+TOOL_HEADERS   := $(sort $(notdir $(wildcard include/materia/tools/*.h)))
 
 install: all
-	install -d $(DESTDIR)$(INC_DIR)/materia $(DESTDIR)$(LIB_DIR)/pkgconfig $(DESTDIR)$(BIN_DIR) $(DESTDIR)$(DOC_DIR)
-	install -m 644 include/materia.h $(DESTDIR)$(INC_DIR)/
+	install -d $(DESTDIR)$(INC_DIR)/materia/tools $(DESTDIR)$(LIB_DIR)/pkgconfig $(DESTDIR)$(BIN_DIR) $(DESTDIR)$(DOC_DIR)
+	install -m 644 include/materia.h include/materia_tools.h $(DESTDIR)$(INC_DIR)/
 	install -m 644 include/materia/*.h $(CONFIG_H) $(DESTDIR)$(INC_DIR)/materia/
+	install -m 644 include/materia/tools/*.h $(DESTDIR)$(INC_DIR)/materia/tools/
 	install -m 644 $(STATIC_LIB) $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).a
 	install -m 755 $(SHARED_LIB) $(DESTDIR)$(LIB_DIR)/
 	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIB_DIR)/$(SONAME)
@@ -422,13 +424,15 @@ install: all
 	    > $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME).pc
 
 uninstall:
-	rm -f $(DESTDIR)$(INC_DIR)/materia.h $(addprefix $(DESTDIR)$(INC_DIR)/materia/,$(PUBLIC_HEADERS))
+	rm -f $(DESTDIR)$(INC_DIR)/materia.h $(DESTDIR)$(INC_DIR)/materia_tools.h \
+	      $(addprefix $(DESTDIR)$(INC_DIR)/materia/,$(PUBLIC_HEADERS)) \
+	      $(addprefix $(DESTDIR)$(INC_DIR)/materia/tools/,$(TOOL_HEADERS))
 	rm -f $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).a $(DESTDIR)$(LIB_DIR)/$(notdir $(SHARED_LIB)) \
 	      $(DESTDIR)$(LIB_DIR)/$(SONAME) $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).so \
 	      $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME).pc
 	rm -f $(addprefix $(DESTDIR)$(BIN_DIR)/,$(addsuffix $(TOOL_SUFFIX),$(INSTALLED_TOOLS)))
 	rm -f $(addprefix $(DESTDIR)$(DOC_DIR)/,$(notdir $(DOC_FILES)))
-	-rmdir $(DESTDIR)$(INC_DIR)/materia $(DESTDIR)$(DOC_DIR) 2>/dev/null
+	-rmdir $(DESTDIR)$(INC_DIR)/materia/tools $(DESTDIR)$(INC_DIR)/materia $(DESTDIR)$(DOC_DIR) 2>/dev/null
 	$(if $(filter double,$(PRECISION)),-rmdir $(DESTDIR)$(INC_DIR) 2>/dev/null)
 
 clean:

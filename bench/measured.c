@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include "materia.h"
-#include "materia/measured.h"
+#include "materia/tools/merl.h"
 #include "support/check.h"
 #include "support/tfiles.h"
 #include "support/timing.h"

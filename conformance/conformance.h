@@ -6,7 +6,7 @@
 #define MT_CONFORMANCE_H
 
 #include "materia.h"
-#include "materia/cubature.h"
+#include "materia/tools/cubature.h"
 
 /* ---- subjects: a BSDF built in the identity frame at the default point -- */
 typedef struct cf_subject cf_subject;

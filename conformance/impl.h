@@ -10,7 +10,7 @@
 #include "child.h"
 #include "conformance.h"
 #include "strbuf.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 
 /* ---- one implementation: a child process, or materia in-process -------- */
 typedef struct cf_eval {

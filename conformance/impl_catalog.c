@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "impl.h"
-#include "materia/measured.h"
+#include "materia/tools/merl.h"
 
 #define LE1 CI_FURNACE_LE1
 #define TWO CI_TWO_SIDED

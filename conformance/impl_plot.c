@@ -9,7 +9,7 @@
 #include <string.h>
 #include "image/font.h"
 #include "impl.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 
 #define GAP 12   /* between panels */
 #define LINE (MT__FONT_H + 4)

@@ -8,7 +8,7 @@
 #include "fuzz.h"
 #include "materia/measured.h"
 #include "materia/mipmap.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -22,7 +22,6 @@
 #include "materia/rgb.h"
 #include "materia/frame.h"
 #include "materia/error.h"
-#include "materia/alloc.h"
 #include "materia/arena.h"
 #include "materia/rng.h"
 #include "materia/sampling.h"
@@ -30,7 +29,6 @@
 #include "materia/diffgeom.h"
 #include "materia/bxdf.h"
 #include "materia/bsdf.h"
-#include "materia/cubature.h"
 #include "materia/transform.h"
 #include "materia/spectrum.h"
 #include "materia/params.h"
@@ -42,9 +40,6 @@
 #include "materia/bump.h"
 #include "materia/measured.h"
 #include "materia/material.h"
-#include "materia/query.h"
-#include "materia/imgcmp.h"
-#include "materia/sheet.h"
 #include "materia/render.h"
 
 #ifdef __cplusplus

@@ -26,7 +26,7 @@
  * and 4 give 0.0401867 and 0.0402259: refinement does not converge); a
  * plastic MERL table made by materia-merl moves by 2e-5 relative.
  */
-#include "materia/cubature.h"
+#include "materia/tools/cubature.h"
 #include "measured/measured_impl.h"
 
 /* The fuzzing build (make fuzz) sets a coarser grid, no refinement and no

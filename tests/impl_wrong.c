@@ -33,7 +33,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "materia.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 
 static void out(const char *s)
 {

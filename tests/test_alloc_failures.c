@@ -12,11 +12,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "materia/alloc.h"
+#include "materia/tools/alloc.h"
 #include "materia/image.h"
 #include "materia/measured.h"
 #include "materia/mipmap.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "materia/render.h"
 #include "support/check.h"
 #include "support/tfiles.h"

@@ -14,7 +14,7 @@
 #include <string.h>
 #include <time.h>
 #include "core/cache.h"
-#include "materia/alloc.h"
+#include "materia/tools/alloc.h"
 #include "support/check.h"
 
 /* A refcounted value. */

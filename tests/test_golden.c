@@ -22,7 +22,7 @@
 #endif
 #include "support/blockstats.h"
 #include "support/check.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "materia/measured.h"
 #include "materia/render.h"
 

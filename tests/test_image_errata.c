@@ -25,7 +25,7 @@
 #include "image/openexr.h"
 #include "materia/image.h"
 #include "materia/mipmap.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "support/check.h"
 #include "support/tquery.h"
 #include "support/tfiles.h"

@@ -11,7 +11,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "support/check.h"
 #include "support/timage.h"
 

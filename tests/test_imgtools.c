@@ -11,8 +11,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "image/font.h"
-#include "materia/imgcmp.h"
-#include "materia/sheet.h"
+#include "materia/tools/imgcmp.h"
+#include "materia/tools/sheet.h"
 #include "support/check.h"
 #include "support/timage.h"
 #include "support/tfiles.h"

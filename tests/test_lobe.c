@@ -13,7 +13,7 @@
 #include <unistd.h>
 #include "image/heatcolour.h"
 #include "materia.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "support/check.h"
 #include "support/tfiles.h"
 

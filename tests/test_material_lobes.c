@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "materia.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "support/check.h"
 #include "support/tquery.h"
 

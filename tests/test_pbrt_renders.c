@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "support/check.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "materia/render.h"
 
 static const char *const materials[] = T_MATERIAL_SCENES;

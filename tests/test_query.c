@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "materia.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "support/check.h"
 
 /* Feeds the lines of script (separated by '\n') and the end of input, and

@@ -17,7 +17,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <dirent.h>
-#include "materia/alloc.h"
+#include "materia/tools/alloc.h"
 #include "support/check.h"
 #include "support/tfiles.h"
 #include "support/trender.h"

@@ -16,7 +16,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "materia/alloc.h"
+#include "materia/tools/alloc.h"
 #include "materia/sampling.h"
 #include "support/check.h"
 #include "support/tgeom.h"

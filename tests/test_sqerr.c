@@ -17,7 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "support/check.h"
 #include "support/sqerr.h"
 #include "support/timage.h"

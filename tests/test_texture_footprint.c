@@ -13,7 +13,7 @@
 #include <math.h>
 #include <stdio.h>
 #include "materia.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "support/check.h"
 #include "support/tquery.h"
 

@@ -26,7 +26,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "../conformance/impl.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "support/check.h"
 
 #define FORMAT_VERSION 1

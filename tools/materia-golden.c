@@ -21,7 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "materia.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "materia/render.h"
 #include "support/blockstats.h"
 #include "tracer/scene.h"

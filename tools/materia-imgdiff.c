@@ -20,7 +20,7 @@
 #include <string.h>
 #include "materia.h"
 #include "materia/image.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "toolargs.h"
 
 static const char *prog = "materia-imgdiff";

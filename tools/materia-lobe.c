@@ -23,7 +23,7 @@
 #include "image/font.h"
 #include "image/heatcolour.h"
 #include "materia.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "lobe.h"
 #include "protochild.h"
 #include "toolargs.h"

@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "materia.h"
+#include "materia/tools/merl.h"
 #include "toolargs.h"
 #include "materia/measured.h"
 

@@ -16,7 +16,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "materia.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "toolargs.h"
 
 static void warn(void *ctx, const char *file, int line, const char *msg)

@@ -14,7 +14,7 @@
 #include <string.h>
 #include "materia.h"
 #include "materia/image.h"
-#include "materia/sheet.h"
+#include "materia/tools/sheet.h"
 #include "toolargs.h"
 
 static const char *prog = "materia-sheet";

@@ -41,7 +41,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "materia/image.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "support/sqerr.h"
 
 static int fail(const char *what, const mt_error *err)

@@ -44,7 +44,7 @@
 #include <time.h>
 #include "materia.h"
 #include "support/timing.h"
-#include "materia/measured.h"
+#include "materia/tools/merl.h"
 
 #define NT 4096 /* pairs per timing run */
 #define REPS 5

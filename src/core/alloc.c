@@ -1,7 +1,7 @@
 /* The library's one allocator: counting and fault injection for tests. */
 #include <stdlib.h>
 #include <string.h>
-#include "materia/alloc.h"
+#include "materia/tools/alloc.h"
 #include "core/alloc.h"
 
 static unsigned long alloc_count;

@@ -6,7 +6,7 @@
  * K15xG7 estimates whose differences tell which axis to split.
  */
 #include <string.h>
-#include "materia/cubature.h"
+#include "materia/tools/cubature.h"
 #include "core/alloc.h"
 
 /* The 15 Kronrod nodes of [-1, 1] in order, their weights, and the weights of

@@ -4,7 +4,7 @@
 #include <math.h>
 #include "core/alloc.h"
 #include "image/cmpblocks.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 
 int mt__cmp_channels(const mt_image *img) { return img->channels == 1 ? 1 : 3; }
 

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include "image/font.h"
 #include "image/heatcolour.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 
 /* An inferno-like scale (after the matplotlib colour map of van der Walt and
  * Smith: dark, perceptually ordered, legible in grey): sRGB stops at 0,

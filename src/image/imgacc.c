@@ -5,7 +5,7 @@
  * for identical samples.
  */
 #include "core/alloc.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 
 struct mt_imgacc {
     int width, height, channels;

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include "core/alloc.h"
 #include "image/cmpblocks.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "materia/rgb.h"
 
 static int cmp_double(const void *pa, const void *pb)

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <string.h>
 #include "image/font.h"
-#include "materia/sheet.h"
+#include "materia/tools/sheet.h"
 
 /* Linear grey of the background: about 10% on screen after sRGB. */
 #define SHEET_BACKGROUND 0.01f

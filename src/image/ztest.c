@@ -16,7 +16,7 @@
 #include <math.h>
 #include "core/alloc.h"
 #include "image/cmpblocks.h"
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 
 mt_ztest_options mt_ztest_defaults(void)
 {

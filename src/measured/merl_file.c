@@ -23,6 +23,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "core/alloc.h"
+#include "materia/tools/merl.h"
 #include "measured/measured_impl.h"
 #include "params/numcheck.h"
 #include "params/report.h"

@@ -10,6 +10,7 @@
  * pbrt-v2's half-angle frame (whx = (cos theta_h, 0, -sin theta_h), why = y).
  */
 #include "measured/measured_impl.h"
+#include "materia/tools/merl.h"
 
 void mt_merl_directions(double uh, double ud, double up, mt_vec3 *wo, mt_vec3 *wi)
 {

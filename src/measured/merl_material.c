@@ -10,6 +10,7 @@
 #include "core/alloc.h"
 #include "materia/material.h"
 #include "materia/measured.h"
+#include "materia/tools/merl.h"
 #include "materia/state.h"
 
 typedef struct apply_ctx {

@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include "materia.h"
-#include "materia/cubature.h"
+#include "materia/tools/cubature.h"
 #include "materia/material.h"
-#include "materia/query.h"
+#include "materia/tools/query.h"
 #include "materia/state.h"
 
 /* rho's relative tolerance (docs/PROTOCOL.md). The fuzzing build

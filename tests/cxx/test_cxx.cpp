@@ -3,7 +3,7 @@
 // reported. It proves that the headers compile as C++ (extern "C" guards, no
 // C-only constructs in the inline functions) and that a C++ link of
 // libmateria finds the C symbols unmangled. Prints PASS/FAIL lines.
-#include <materia.h>
+#include <materia_tools.h>
 
 #include <cmath>
 #include <cstdio>

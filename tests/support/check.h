@@ -8,7 +8,7 @@
 #define MT_TEST_CHECK_H
 
 #include <stdio.h>
-#include "materia.h"
+#include "materia_tools.h"
 
 void t_pass(const char *name);
 void t_fail(const char *name, const char *fmt, ...)

@@ -6,7 +6,7 @@
 #ifndef MT_TEST_MERL_CHECK_H
 #define MT_TEST_MERL_CHECK_H
 
-#include "materia/measured.h"
+#include "materia/tools/merl.h"
 
 /* mt_merl_directions turned by phi_h about the normal. */
 void t_merl_pair(double uh, double ud, double up, double phi_h, mt_vec3 *wo, mt_vec3 *wi);

@@ -1,7 +1,7 @@
 /* The squared error against a noisy reference, its noise subtracted (sqerr.h). */
 #include <math.h>
 #include <stdio.h>
-#include "materia/imgcmp.h"
+#include "materia/tools/imgcmp.h"
 #include "support/sqerr.h"
 
 static int colour_channels(const mt_image *img)

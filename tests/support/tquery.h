@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "materia/query.h"
+#include "materia/tools/query.h"
 
 /* Sends line to q. n == 0: 1 when the answer is "ok". n > 0: parses n
  * numbers of the answer into v. 0 on any other answer (printed). */

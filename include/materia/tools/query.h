@@ -1,5 +1,5 @@
 /*
- * materia/query.h -- the query protocol of materia-query, as a library.
+ * materia/tools/query.h -- the query protocol of materia-query, as a library.
  *
  * A session holds pbrt-v2's graphics state, a mode and a shading point, and
  * answers one query line at a time (see README.md, "The query tool"):
@@ -20,8 +20,8 @@
  * The whole protocol, with its rules for state, errors and numbers, is
  * docs/PROTOCOL.md; MT_QUERY_PROTOCOL_VERSION is its version.
  */
-#ifndef MATERIA_QUERY_H
-#define MATERIA_QUERY_H
+#ifndef MATERIA_TOOLS_QUERY_H
+#define MATERIA_TOOLS_QUERY_H
 
 #include "materia/error.h"
 #include "materia/bsdf.h"

@@ -1,5 +1,5 @@
 /*
- * materia/cubature.h -- adaptive cubature in double precision, and
+ * materia/tools/cubature.h -- adaptive cubature in double precision, and
  * reflectance by quadrature.
  *
  * mt_cubature integrates a vector-valued function over a rectangle with
@@ -11,8 +11,8 @@
  * start from a finer grid there (mt_bxdf_rho_quad uses the BxDF's own
  * sampler to find it).
  */
-#ifndef MATERIA_CUBATURE_H
-#define MATERIA_CUBATURE_H
+#ifndef MATERIA_TOOLS_CUBATURE_H
+#define MATERIA_TOOLS_CUBATURE_H
 
 #include "materia/bsdf.h"
 

@@ -1,5 +1,5 @@
 /*
- * materia/alloc.h -- allocation statistics and fault injection, for tests.
+ * materia/tools/alloc.h -- allocation statistics and fault injection, for tests.
  *
  * Every heap allocation the library makes goes through one function. The
  * counter lets a test prove that rendering does not allocate per sample; the
@@ -7,8 +7,8 @@
  * failure is reported cleanly and nothing leaks. The counter is atomic; the
  * injector is meant for single-threaded tests.
  */
-#ifndef MATERIA_ALLOC_H
-#define MATERIA_ALLOC_H
+#ifndef MATERIA_TOOLS_ALLOC_H
+#define MATERIA_TOOLS_ALLOC_H
 
 #include <stddef.h>
 #include "materia/real.h"

@@ -1,5 +1,5 @@
 /*
- * materia/imgcmp.h -- comparing a render with a reference image.
+ * materia/tools/imgcmp.h -- comparing a render with a reference image.
  *
  * Three comparisons, for the golden-image tests and the comparison with
  * pbrt-v2's own renders (docs/RENDERER.md, "Comparing images"):
@@ -31,8 +31,8 @@
  * pixels it holds (every pixel counts once); pbrt-v2's 160x120 renders have
  * no partial 4x4 block.
  */
-#ifndef MATERIA_IMGCMP_H
-#define MATERIA_IMGCMP_H
+#ifndef MATERIA_TOOLS_IMGCMP_H
+#define MATERIA_TOOLS_IMGCMP_H
 
 #include "materia/error.h"
 #include "materia/image.h"

@@ -1,9 +1,9 @@
 /*
- * materia/sheet.h -- contact sheets: images laid out in a grid with a label
+ * materia/tools/sheet.h -- contact sheets: images laid out in a grid with a label
  * under each, tone mapped for display (make demo shows every material so).
  */
-#ifndef MATERIA_SHEET_H
-#define MATERIA_SHEET_H
+#ifndef MATERIA_TOOLS_SHEET_H
+#define MATERIA_TOOLS_SHEET_H
 
 #include "materia/error.h"
 #include "materia/image.h"
