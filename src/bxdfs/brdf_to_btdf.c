@@ -69,6 +69,7 @@ static const mt_bxdf_ops brdf_to_btdf_ops = {"brdf_to_btdf", btdf_f, btdf_sample
 mt_bxdf *mt_brdf_to_btdf_create(mt_arena *a, mt_mode mode, mt_bxdf *brdf, mt_error *err)
 {
     brdf_to_btdf *t;
+    mt_error_clear(err);
     if (!brdf) return NULL; /* a failed creator: err already says why */
     t = mt_bxdf_alloc(a, sizeof *t, &brdf_to_btdf_ops,
                       brdf->type ^ (MT_BSDF_REFLECTION | MT_BSDF_TRANSMISSION), mode, err);

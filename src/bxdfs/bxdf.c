@@ -11,6 +11,7 @@ void *mt_bxdf_alloc(mt_arena *a, size_t size, const mt_bxdf_ops *ops, unsigned t
                     mt_error *err)
 {
     mt_bxdf *b = mt_arena_alloc(a, size);
+    mt_error_clear(err);
     if (!b) {
         mt_error_set(err, MT_ERR_NOMEM, "out of memory allocating a %s BxDF", ops->name);
         return NULL;

@@ -88,6 +88,7 @@ mt_bxdf *mt_fresnelblend_create(mt_arena *a, mt_mode mode, mt_rgb Rd, mt_rgb Rs,
                                 mt_distribution dist, mt_error *err)
 {
     fresnelblend *fb;
+    mt_error_clear(err);
     if (!mt__check_rgb(Rd, "Rd", "fresnelblend", err) ||
         !mt__check_rgb(Rs, "Rs", "fresnelblend", err) ||
         !mt__check_distribution(&dist, "fresnelblend", err))

@@ -199,11 +199,13 @@ static mt_bxdf *create(mt_arena *a, mt_mode mode, const mt_measured *data, mt_me
 mt_bxdf *mt_irregular_isotropic_brdf_create(mt_arena *a, mt_mode mode, const mt_measured *data,
                                             mt_error *err)
 {
+    mt_error_clear(err);
     return create(a, mode, data, MT_MEASURED_IRREGULAR, &irreg_ops, err);
 }
 
 mt_bxdf *mt_regular_halfangle_brdf_create(mt_arena *a, mt_mode mode, const mt_measured *data,
                                           mt_error *err)
 {
+    mt_error_clear(err);
     return create(a, mode, data, MT_MEASURED_HALFANGLE, &halfangle_ops, err);
 }

@@ -73,6 +73,7 @@ mt_bxdf *mt_microfacet_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_fresnel fr
                               mt_distribution dist, mt_error *err)
 {
     microfacet *m;
+    mt_error_clear(err);
     if (!mt__check_rgb(R, "R", "microfacet", err) ||
         !mt__check_fresnel(&fresnel, "microfacet", err) ||
         !mt__check_distribution(&dist, "microfacet", err))

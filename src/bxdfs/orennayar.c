@@ -46,6 +46,7 @@ mt_bxdf *mt_orennayar_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_real sigma_
 {
     orennayar *o;
     mt_real sigma, sigma2;
+    mt_error_clear(err);
     if (!mt__check_rgb(R, "R", "orennayar", err) ||
         !mt__check_real(sigma_deg, "sigma", "orennayar", err))
         return NULL;

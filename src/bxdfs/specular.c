@@ -92,6 +92,7 @@ mt_bxdf *mt_specular_reflection_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_f
                                        mt_error *err)
 {
     specular_reflection *s;
+    mt_error_clear(err);
     if (!mt__check_rgb(R, "R", "specular_reflection", err) ||
         !mt__check_fresnel(&fresnel, "specular_reflection", err))
         return NULL;
@@ -108,6 +109,7 @@ mt_bxdf *mt_specular_transmission_create(mt_arena *a, mt_mode mode, mt_rgb T, mt
 {
     specular_transmission *s;
     mt_fresnel fr = mt_fresnel_dielectric(etai, etat);
+    mt_error_clear(err);
     if (!mt__check_rgb(T, "T", "specular_transmission", err) ||
         !mt__check_fresnel(&fr, "specular_transmission", err))
         return NULL;

@@ -124,6 +124,7 @@ mt_status mt_cubature(mt_cubature_fn f, void *ctx, int ncomp, double x0, double 
     region *heap;
     int cap, n = 0, i, j, k;
     double tol[MT_CUBATURE_MAX_COMPONENTS];
+    mt_error_clear(err);
     memset(res, 0, sizeof *res);
     if (ncomp < 1 || ncomp > MT_CUBATURE_MAX_COMPONENTS || nx < 1 || ny < 1 || !(x1 >= x0) ||
         !(y1 >= y0) || !(abs_tol > 0 || rel_tol > 0))

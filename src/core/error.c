@@ -20,10 +20,18 @@ const char *mt_status_string(mt_status s)
     return "unknown status";
 }
 
+/* Field by field rather than memset: every function that takes an mt_error
+ * calls this on entry, among them mt_material_get_bsdf once per shading
+ * point, and the strings only need their first byte. */
 void mt_error_clear(mt_error *err)
 {
     if (!err) return;
-    memset(err, 0, sizeof *err);
+    err->status = MT_OK;
+    err->file[0] = '\0';
+    err->line = 0;
+    err->column = 0;
+    err->param[0] = '\0';
+    err->message[0] = '\0';
 }
 
 static void vset(mt_error *err, mt_status status, const char *fmt, va_list ap)
@@ -73,14 +81,16 @@ const char *mt_error_format(const mt_error *err, char *buf, size_t size)
         int w_ = snprintf(buf + n, n < size ? size - n : 0, __VA_ARGS__);   \
         if (w_ > 0) n += (size_t)w_;                                        \
     } while (0)
+    /* %.*s: a field that lost its terminator is still read within bounds */
     if (err->file[0]) {
-        APPEND("%s:", err->file);
+        APPEND("%.*s:", (int)sizeof err->file - 1, err->file);
         if (err->line > 0) APPEND("%d:", err->line);
         if (err->column > 0) APPEND("%d:", err->column);
         APPEND(" ");
     }
-    if (err->param[0]) APPEND("parameter \"%s\": ", err->param);
-    APPEND("%s", err->message[0] ? err->message : mt_status_string(err->status));
+    if (err->param[0]) APPEND("parameter \"%.*s\": ", (int)sizeof err->param - 1, err->param);
+    if (err->message[0]) APPEND("%.*s", (int)sizeof err->message - 1, err->message);
+    else APPEND("%s", mt_status_string(err->status));
 #undef APPEND
     return buf;
 }

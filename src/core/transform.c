@@ -114,6 +114,7 @@ mt_status mt_transform_from_matrix(const double m[16], mt_transform *out, mt_err
 {
     mt_matrix4 a, inv;
     int i;
+    mt_error_clear(err);
     for (i = 0; i < 16; ++i) {
         if (!isfinite(m[i]))
             return mt_error_set(err, MT_ERR_INVALID, "transform matrix has a non-finite entry");
@@ -201,6 +202,7 @@ mt_status mt_look_at(mt_vec3 pos, mt_vec3 look, mt_vec3 up, mt_transform *out, m
     double u[3] = {up.x, up.y, up.z}, left[3], nu[3], l;
     mt_matrix4 cam2world = mat_identity(), world2cam;
     int i;
+    mt_error_clear(err);
     l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
     if (!(l > 0)) return mt_error_set(err, MT_ERR_INVALID, "LookAt: eye and target coincide");
     for (i = 0; i < 3; ++i) dir[i] /= l;

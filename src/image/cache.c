@@ -106,6 +106,7 @@ mt_mipmap *mt_mipmap_cache_get(const char *path, int trilinear, mt_real maxaniso
     texinfo ti;
     char *key;
     mt_mipmap *m;
+    mt_error_clear(err);
     if (!path || !path[0]) {
         mt_error_param(err, MT_ERR_INVALID, "filename", "no image file name");
         return NULL;

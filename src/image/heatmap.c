@@ -57,6 +57,7 @@ mt_status mt_imgcmp_heatmap(const mt_image *blocks, int block, int width, int he
 {
     mt_status st;
     int x, y, c, nc;
+    mt_error_clear(err);
     if (!blocks || !blocks->data || !out)
         return mt_error_set(err, MT_ERR_INVALID, "mt_imgcmp_heatmap: no block map or output");
     if (block < 1 || width < 1 || height < 1 ||

@@ -31,6 +31,7 @@ mt_status mt__image_check_size(const char *path, long long w, long long h, int c
 mt_status mt_image_create(mt_image *img, int width, int height, int channels, mt_error *err)
 {
     size_t n;
+    mt_error_clear(err);
     if (!img) return mt_error_set(err, MT_ERR_INVALID, "mt_image_create: no image");
     img->width = img->height = img->channels = 0;
     img->data = NULL;
@@ -85,12 +86,14 @@ static image_format format_of(const char *path)
 
 mt_status mt_image_read(const char *path, mt_image *img, mt_error *err)
 {
+    mt_error_clear(err);
     return mt_image_read_mode(path, MT_MODE_CORRECTED, img, err);
 }
 
 mt_status mt_image_read_mode(const char *path, mt_mode mode, mt_image *img, mt_error *err)
 {
     mt_status st;
+    mt_error_clear(err);
     if (!img) return mt_error_set(err, MT_ERR_INVALID, "mt_image_read: no image");
     img->width = img->height = img->channels = 0;
     img->data = NULL;
@@ -113,6 +116,7 @@ mt_status mt_image_write(const char *path, const mt_image *img, const mt_image_a
 {
     mt__exr_options opt;
     int i;
+    mt_error_clear(err);
     if (!path) return mt_error_set(err, MT_ERR_INVALID, "mt_image_write: no file name");
     if (!img || !img->data || img->width < 1 || img->height < 1 ||
         (img->channels != 1 && img->channels != 3 && img->channels != 4))
@@ -142,6 +146,7 @@ mt_status mt_image_check_writable(const char *path, mt_error *err)
     const char *slash;
     struct stat sb;
     size_t n;
+    mt_error_clear(err);
     if (!path || !path[0]) return mt_error_set(err, MT_ERR_INVALID, "no output file name");
     if (format_of(path) == FMT_NONE)
         return mt_error_set(err, MT_ERR_UNSUPPORTED,

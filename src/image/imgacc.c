@@ -17,6 +17,7 @@ mt_imgacc *mt_imgacc_create(int width, int height, int channels, mt_error *err)
 {
     mt_imgacc *acc;
     size_t np, nv;
+    mt_error_clear(err);
     if (width < 1 || height < 1 || width > 65536 || height > 65536 ||
         (channels != 1 && channels != 3 && channels != 4)) {
         mt_error_set(err, MT_ERR_INVALID, "invalid accumulator size %d x %d x %d", width,
@@ -70,6 +71,7 @@ void mt_imgacc_add(mt_imgacc *acc, int x, int y, const float *v)
 mt_status mt_imgacc_add_image(mt_imgacc *acc, const mt_image *img, mt_error *err)
 {
     int x, y;
+    mt_error_clear(err);
     if (!acc || !img || !img->data)
         return mt_error_set(err, MT_ERR_INVALID, "mt_imgacc_add_image: no accumulator or image");
     if (img->width != acc->width || img->height != acc->height ||
@@ -92,6 +94,7 @@ mt_status mt_imgacc_finish(const mt_imgacc *acc, mt_image *mean, mt_image *var_o
     size_t np, p, k;
     mt_status st;
     int c;
+    mt_error_clear(err);
     if (!acc) return mt_error_set(err, MT_ERR_INVALID, "mt_imgacc_finish: no accumulator");
     np = (size_t)acc->width * (size_t)acc->height;
     for (p = 0; p < np; ++p)

@@ -66,6 +66,7 @@ mt_status mt_imgcmp_noise(const mt_image *a, const mt_image *b, int block,
     mt_status st;
     double *r, sum = 0, mx = 0;
     size_t n, k;
+    mt_error_clear(err);
     if (!out) return mt_error_set(err, MT_ERR_INVALID, "mt_imgcmp_noise: no output");
     if ((st = mt__cmp_pair(a, b, block, &g, err)) != MT_OK) return st;
     if (!(r = reldiffs(a, b, &g, err))) return MT_ERR_NOMEM;
@@ -94,6 +95,7 @@ mt_status mt_imgcmp_pixel_errors(const mt_image *a, const mt_image *b, mt_pixel_
     mt_status st;
     double se = 0, rse = 0, n;
     int x, y, c;
+    mt_error_clear(err);
     if (!out) return mt_error_set(err, MT_ERR_INVALID, "mt_imgcmp_pixel_errors: no output");
     if ((st = mt__cmp_pair(a, b, 1, &g, err)) != MT_OK) return st;
     out->max_abs = 0;
@@ -126,6 +128,7 @@ mt_status mt_imgcmp_reldiff_blocks(const mt_image *a, const mt_image *b, int blo
     mt__grid g;
     mt_status st;
     double *r;
+    mt_error_clear(err);
     if (!map) return mt_error_set(err, MT_ERR_INVALID, "mt_imgcmp_reldiff_blocks: no output");
     if ((st = mt__cmp_pair(a, b, block, &g, err)) != MT_OK) return st;
     if (!(r = reldiffs(a, b, &g, err))) return MT_ERR_NOMEM;

@@ -361,6 +361,7 @@ mt_mipmap *mt_mipmap_create(const mt_image *img, int trilinear, mt_real maxaniso
     mt_real *texels;
     size_t n, k;
     int nc, c;
+    mt_error_clear(err);
     if (!img || !img->data || img->width < 1 || img->height < 1 ||
         (img->channels != 1 && img->channels != 3 && img->channels != 4)) {
         mt_error_set(err, MT_ERR_INVALID, "mt_mipmap_create: not a valid image");

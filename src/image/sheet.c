@@ -85,6 +85,7 @@ mt_status mt_sheet_make(const mt_sheet_entry *entries, int n, const mt_sheet_opt
     size_t k;
     mt_status st;
     float scale;
+    mt_error_clear(err);
     if (!out) return mt_error_set(err, MT_ERR_INVALID, "mt_sheet_make: no output");
     if ((st = check(entries, n, &o, err)) != MT_OK) return st;
     cols = o.columns;

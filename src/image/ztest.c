@@ -129,6 +129,7 @@ mt_status mt_imgcmp_ztest(const mt_image *a, const mt_image *var_a, const mt_ima
     long zcount[3] = {0, 0, 0};
     size_t n, k;
     int c;
+    mt_error_clear(err);
     if (!out) return mt_error_set(err, MT_ERR_INVALID, "mt_imgcmp_ztest: no output");
     if ((st = mt__cmp_pair(a, b, o.block, &g, err)) != MT_OK) return st;
     if ((st = check_inputs(var_a, var_b, &o, &g, err)) != MT_OK) return st;

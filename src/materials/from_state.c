@@ -58,6 +58,7 @@ mt_material *mt_material_from_state(const mt_state *s, const mt_paramset *shape_
     mt_material_spec spec;
     mt_material *m;
     int i;
+    mt_error_clear(err);
     memset(&r, 0, sizeof r);
     r.state = s;
     r.err = err;
@@ -73,6 +74,7 @@ mt_material *mt_material_named_from_state(const mt_state *s, const char *name, m
     mt_material_spec spec;
     mt_material *m;
     int i;
+    mt_error_clear(err);
     if (mt_state_named_material(s, name, &spec, err) != MT_OK) return NULL;
     memset(&r, 0, sizeof r);
     r.state = s;

@@ -38,6 +38,7 @@ static mt__cache cache = MT__CACHE_INIT(retain, release);
 
 mt_measured *mt_measured_load(const char *path, mt_error *err)
 {
+    mt_error_clear(err);
     if (!path || !path[0]) {
         mt_error_set(err, MT_ERR_INVALID, "no measured BRDF file name given");
         return NULL;

@@ -56,6 +56,7 @@ mt_measured *mt_measured_irregular_create(const mt_vec3 *wo, const mt_vec3 *wi,
     mt_real *pts;
     mt_rgb *vals;
     int i;
+    mt_error_clear(err);
     if (!wo || !wi || !values || n < 1) {
         mt_error_set(err, MT_ERR_INVALID, "irregular measured BRDF: no samples");
         return NULL;
@@ -88,6 +89,7 @@ mt_measured *mt_measured_halfangle_create(const mt_real *rgb, mt_error *err)
 {
     size_t k, n = 3 * (size_t)MT_MERL_SAMPLES;
     mt_real *table;
+    mt_error_clear(err);
     if (!rgb) {
         mt_error_set(err, MT_ERR_INVALID, "half-angle measured BRDF: no table");
         return NULL;

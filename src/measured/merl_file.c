@@ -210,6 +210,7 @@ mt_status mt_merl_write(const char *path, const double *values, mt_error *err)
     int fd;
     FILE *f;
     mt_status st;
+    mt_error_clear(err);
     if (!path || !path[0]) return mt_error_set(err, MT_ERR_INVALID, "MERL file: no file name");
     for (k = 0; k < VALUES; ++k)
         if (!isfinite(values[k]))

@@ -78,6 +78,7 @@ mt_status mt_merl_write_statements(const char *statements, const mt_merl_options
     apply_ctx a;
     mt_parse_options popt;
     mt_status st;
+    mt_error_clear(err);
     if (!opt) opt = &defaults;
     mt_error_clear(err);
     a.state = mt_state_create(opt->mode);

@@ -217,6 +217,7 @@ static int index_of_type(const mt_paramset *ps, const char *name, mt_param_type 
 
 mt_status mt_paramset_add(mt_paramset *ps, const mt_param *p, mt_error *err)
 {
+    mt_error_clear(err);
     mt_status st = check_param(p, err);
     entry e;
     int old;
@@ -315,6 +316,7 @@ static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type w
 mt_status mt_params_float(const mt_paramset *ps, const char *name, mt_real def, mt_real *out,
                           mt_error *err)
 {
+    mt_error_clear(err);
     const mt_param *p;
     mt_status st = lookup(ps, name, MT_PARAM_FLOAT, 1, &p, err);
     *out = p ? (mt_real)p->reals[0] : def;
@@ -333,12 +335,14 @@ static mt_status one_int(const mt_paramset *ps, const char *name, mt_param_type 
 mt_status mt_params_int(const mt_paramset *ps, const char *name, int def, int *out,
                         mt_error *err)
 {
+    mt_error_clear(err);
     return one_int(ps, name, MT_PARAM_INTEGER, def, out, err);
 }
 
 mt_status mt_params_bool(const mt_paramset *ps, const char *name, int def, int *out,
                          mt_error *err)
 {
+    mt_error_clear(err);
     return one_int(ps, name, MT_PARAM_BOOL, def, out, err);
 }
 
@@ -354,18 +358,21 @@ static mt_status one_string(const mt_paramset *ps, const char *name, mt_param_ty
 mt_status mt_params_string(const mt_paramset *ps, const char *name, const char *def,
                            const char **out, mt_error *err)
 {
+    mt_error_clear(err);
     return one_string(ps, name, MT_PARAM_STRING, def, out, err);
 }
 
 mt_status mt_params_texture(const mt_paramset *ps, const char *name, const char **out,
                             mt_error *err)
 {
+    mt_error_clear(err);
     return one_string(ps, name, MT_PARAM_TEXTURE, NULL, out, err);
 }
 
 mt_status mt_params_filename(const mt_paramset *ps, const char *name, const char *def,
                              char *out, size_t size, mt_error *err)
 {
+    mt_error_clear(err);
     const mt_param *p;
     mt_status st = lookup(ps, name, MT_PARAM_STRING, 1, &p, err);
     if (st != MT_OK) return st;
@@ -402,24 +409,28 @@ static mt_status one_vec(const mt_paramset *ps, const char *name, mt_param_type 
 mt_status mt_params_point(const mt_paramset *ps, const char *name, mt_vec3 def, mt_vec3 *out,
                           mt_error *err)
 {
+    mt_error_clear(err);
     return one_vec(ps, name, MT_PARAM_POINT, def, out, err);
 }
 
 mt_status mt_params_vector(const mt_paramset *ps, const char *name, mt_vec3 def, mt_vec3 *out,
                            mt_error *err)
 {
+    mt_error_clear(err);
     return one_vec(ps, name, MT_PARAM_VECTOR, def, out, err);
 }
 
 mt_status mt_params_normal(const mt_paramset *ps, const char *name, mt_vec3 def, mt_vec3 *out,
                            mt_error *err)
 {
+    mt_error_clear(err);
     return one_vec(ps, name, MT_PARAM_NORMAL, def, out, err);
 }
 
 mt_status mt_params_rgb(const mt_paramset *ps, const char *name, mt_rgb def, mt_rgb *out,
                         mt_error *err)
 {
+    mt_error_clear(err);
     const mt_param *p;
     mt_status st = lookup(ps, name, MT_PARAM_SPECTRUM, 1, &p, err);
     *out = p ? mt_rgb_make((mt_real)p->reals[0], (mt_real)p->reals[1], (mt_real)p->reals[2]) : def;
@@ -439,30 +450,35 @@ static mt_status array_of(const mt_paramset *ps, const char *name, mt_param_type
 mt_status mt_params_floats(const mt_paramset *ps, const char *name, const double **values,
                            int *count, mt_error *err)
 {
+    mt_error_clear(err);
     return array_of(ps, name, MT_PARAM_FLOAT, values, count, err);
 }
 
 mt_status mt_params_points(const mt_paramset *ps, const char *name, const double **values,
                            int *count, mt_error *err)
 {
+    mt_error_clear(err);
     return array_of(ps, name, MT_PARAM_POINT, values, count, err);
 }
 
 mt_status mt_params_normals(const mt_paramset *ps, const char *name, const double **values,
                             int *count, mt_error *err)
 {
+    mt_error_clear(err);
     return array_of(ps, name, MT_PARAM_NORMAL, values, count, err);
 }
 
 mt_status mt_params_vectors(const mt_paramset *ps, const char *name, const double **values,
                             int *count, mt_error *err)
 {
+    mt_error_clear(err);
     return array_of(ps, name, MT_PARAM_VECTOR, values, count, err);
 }
 
 mt_status mt_params_ints(const mt_paramset *ps, const char *name, const int **values,
                          int *count, mt_error *err)
 {
+    mt_error_clear(err);
     const mt_param *p;
     mt_status st = lookup(ps, name, MT_PARAM_INTEGER, 0, &p, err);
     *values = p ? p->ints : NULL;

@@ -522,6 +522,7 @@ mt_status mt_parse_file(const char *path, const mt_parse_options *opt, mt_statem
     struct stat sb;
     include_link self;
     const char *why;
+    mt_error_clear(err);
     if (!err) err = &local;
     mt_error_clear(err);
     if (!path) return mt_error_set(err, MT_ERR_INVALID, "no file name");
@@ -553,6 +554,7 @@ mt_status mt_parse_string(const char *text, const char *name, const char *dir, i
                           const mt_parse_options *opt, mt_statement_fn fn, void *ctx,
                           mt_error *err)
 {
+    mt_error_clear(err);
     return mt__parse_bytes(text, text ? strlen(text) : 0, name, dir, first_line, opt, fn, ctx,
                            err);
 }

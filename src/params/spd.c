@@ -107,6 +107,7 @@ mt_status mt_spd_read(const char *path, double **lambda, double **values, int *n
     char *text;
     size_t len;
     mt_status st;
+    mt_error_clear(err);
     *lambda = *values = NULL;
     *n = 0;
     st = mt__read_file(path, &text, &len, err);

@@ -431,6 +431,7 @@ static const verb verbs[] = {
 mt_status mt_state_apply(mt_state *s, const mt_statement *st, int *handled, mt_error *err)
 {
     size_t i;
+    mt_error_clear(err);
     if (handled) *handled = 0;
     if (!s || !st || !st->directive)
         return mt_error_set(err, MT_ERR_INVALID, "mt_state_apply: no state or statement");

@@ -177,6 +177,7 @@ mt_status mt_state_named_material(const mt_state *s, const char *name, mt_materi
                                   mt_error *err)
 {
     const mt__named_material *m = name ? mt__gstate_find_named(&s->g, name) : NULL;
+    mt_error_clear(err);
     if (!m)
         return mt_error_set(err, MT_ERR_NOT_FOUND, "named material \"%.100s\" undefined",
                             name ? name : "");

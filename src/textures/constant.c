@@ -35,10 +35,12 @@ mt_texture *mt__tex_constant(int is_float, mt_rgb v, mt_mode mode, mt_error *err
 
 mt_texture *mt_texture_constant_float(mt_real v, mt_error *err)
 {
+    mt_error_clear(err);
     return mt__tex_constant(1, mt_rgb_gray(v), MT_MODE_PBRT_V2, err);
 }
 
 mt_texture *mt_texture_constant_rgb(mt_rgb v, mt_error *err)
 {
+    mt_error_clear(err);
     return mt__tex_constant(0, v, MT_MODE_PBRT_V2, err);
 }

@@ -363,6 +363,7 @@ mt_texture *mt_texture_create(const char *class_name, int is_float,
 {
     mt_transform id = mt_transform_identity();
     int i;
+    mt_error_clear(err);
     if (!class_name || !tp) {
         mt_error_set(err, MT_ERR_INVALID, "texture: missing class name or parameters");
         return NULL;

@@ -58,6 +58,7 @@ static const mt_paramset *source(const mt_texparams *tp, const char *name)
 mt_status mt_texparams_float(const mt_texparams *tp, const char *name, mt_real def,
                              mt_real *out, mt_error *err)
 {
+    mt_error_clear(err);
     probe_real(name, "float", def);
     return mt_params_float(source(tp, name), name, def, out, err);
 }
@@ -65,6 +66,7 @@ mt_status mt_texparams_float(const mt_texparams *tp, const char *name, mt_real d
 mt_status mt_texparams_int(const mt_texparams *tp, const char *name, int def, int *out,
                            mt_error *err)
 {
+    mt_error_clear(err);
     probe_real(name, "integer", (mt_real)def);
     return mt_params_int(source(tp, name), name, def, out, err);
 }
@@ -72,6 +74,7 @@ mt_status mt_texparams_int(const mt_texparams *tp, const char *name, int def, in
 mt_status mt_texparams_bool(const mt_texparams *tp, const char *name, int def, int *out,
                             mt_error *err)
 {
+    mt_error_clear(err);
     mt__texparams_probe(name, "bool", def ? "true" : "false", NULL);
     return mt_params_bool(source(tp, name), name, def, out, err);
 }
@@ -79,6 +82,7 @@ mt_status mt_texparams_bool(const mt_texparams *tp, const char *name, int def, i
 mt_status mt_texparams_string(const mt_texparams *tp, const char *name, const char *def,
                               const char **out, mt_error *err)
 {
+    mt_error_clear(err);
     mt__texparams_probe(name, "string", def, NULL);
     return mt_params_string(source(tp, name), name, def, out, err);
 }
@@ -86,6 +90,7 @@ mt_status mt_texparams_string(const mt_texparams *tp, const char *name, const ch
 mt_status mt_texparams_filename(const mt_texparams *tp, const char *name, const char *def,
                                 char *out, size_t size, mt_error *err)
 {
+    mt_error_clear(err);
     mt__texparams_probe(name, "string", def, NULL);
     return mt_params_filename(source(tp, name), name, def, out, size, err);
 }
@@ -94,6 +99,7 @@ mt_status mt_texparams_vector(const mt_texparams *tp, const char *name, mt_vec3 
                               mt_vec3 *out, mt_error *err)
 {
     mt_real v[3];
+    mt_error_clear(err);
     v[0] = def.x, v[1] = def.y, v[2] = def.z;
     probe_triple(name, "vector", v);
     return mt_params_vector(source(tp, name), name, def, out, err);
@@ -102,6 +108,7 @@ mt_status mt_texparams_vector(const mt_texparams *tp, const char *name, mt_vec3 
 mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_rgb def, mt_rgb *out,
                            mt_error *err)
 {
+    mt_error_clear(err);
     probe_triple(name, "rgb", def.c);
     return mt_params_rgb(source(tp, name), name, def, out, err);
 }
@@ -163,6 +170,7 @@ mt_texture *mt_texparams_float_texture(const mt_texparams *tp, const char *name,
     mt_texture *t;
     mt_real v;
     int found;
+    mt_error_clear(err);
     probe_real(name, "float texture", def); /* first: the value read below reports "float" */
     if (named_texture(tp, name, 1, &t, &found, err) || found) return t;
     if (mt_texparams_float(tp, name, def, &v, err)) return NULL;
@@ -175,6 +183,7 @@ mt_texture *mt_texparams_spectrum_texture(const mt_texparams *tp, const char *na
     mt_texture *t;
     mt_rgb v;
     int found;
+    mt_error_clear(err);
     probe_triple(name, "spectrum texture", def.c);
     if (named_texture(tp, name, 0, &t, &found, err) || found) return t;
     if (mt_texparams_rgb(tp, name, def, &v, err)) return NULL;
@@ -188,6 +197,7 @@ mt_status mt_texparams_float_texture_opt(const mt_texparams *tp, const char *nam
     const mt_param *p;
     int found;
     mt_status st;
+    mt_error_clear(err);
     mt__texparams_probe(name, "float texture", "none", NULL);
     st = named_texture(tp, name, 1, out, &found, err);
     if (st || found) return st;

@@ -192,6 +192,7 @@ mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture
     space *s;
     entry *e;
     char *copy;
+    mt_error_clear(err);
     if (!t || !name || !tex)
         return mt_error_set(err, MT_ERR_INVALID, "texture table: missing table, name or texture");
     s = &t->ns[tex->is_float ? 1 : 0];

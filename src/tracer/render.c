@@ -241,6 +241,7 @@ mt_status mt_scene_render(const mt_scene *s, const mt_render_options *o, mt_imag
     int nthreads, started = 0, i;
     double t0, t1;
     mt_status st;
+    mt_error_clear(err);
     if (!o) {
         mt_render_options_default(&def);
         o = &def;

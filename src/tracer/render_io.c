@@ -9,6 +9,7 @@ mt_status mt_render_write(const char *path, const mt_image *img, const mt_scene 
     char spp[32], seed[32];
     mt_image_attr attrs[5];
     int spp_used = o && o->spp > 0 ? o->spp : s->spp;
+    mt_error_clear(err);
     snprintf(spp, sizeof spp, "%d", spp_used);
     snprintf(seed, sizeof seed, "%llu", (unsigned long long)(o ? o->seed : 0));
     attrs[0].name = "materia:spp";
@@ -29,6 +30,7 @@ mt_status mt_render_write(const char *path, const mt_image *img, const mt_scene 
 mt_status mt_render_file(const char *path, const mt_render_options *o, mt_image *image,
                          mt_image *variance, mt_render_stats *stats, mt_error *err)
 {
+    mt_error_clear(err);
     mt_scene *s = mt_scene_load(path, o, err);
     mt_status st;
     if (!s) return err ? err->status : MT_ERR_INVALID;
