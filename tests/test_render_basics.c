@@ -447,7 +447,7 @@ static void test_filters(void)
           "filter sinc: value at x = width / 2 (sinc(pi/2) sinc(3 pi/2))");
     t_check(mt__filter_eval(&f, 0, 0) == 1 && mt__filter_eval(&f, 3.99f, 0) != 0, "filter sinc: shape",
             "f(0) = %g", (double)mt__filter_eval(&f, 0, 0));
-    t_check(mt__filter_create(&f, "lanczos", ps, &err) == MT_ERR_UNSUPPORTED, "filter unknown name",
+    t_check(mt__filter_create(&f, "lanczos", ps, &err) == MT_ERR_NOT_FOUND, "filter unknown name",
             "status %d", err.status);
     add_float(ps, "xwidth", 0);
     t_check(mt__filter_create(&f, "box", ps, &err) == MT_ERR_INVALID && strcmp(err.param, "xwidth") == 0,

@@ -1389,7 +1389,7 @@ static void test_errors(void)
                  MT_ERR_UNSUPPORTED, "", 1, "\"plymesh\"");
     expect_error("error: heightfield is unsupported", "Shape \"heightfield\"", MT_ERR_UNSUPPORTED,
                  "", 1, "heightfield");
-    expect_error("error: unknown shape", "Shape \"blob\"", MT_ERR_UNSUPPORTED, "", 1, "unknown");
+    expect_error("error: unknown shape", "Shape \"blob\"", MT_ERR_NOT_FOUND, "", 1, "unknown");
     expect_error("error: sphere radius <= 0", "Shape \"sphere\"\n  \"float radius\" -1",
                  MT_ERR_INVALID, "radius", 2, "not positive");
     expect_error("error: sphere zmin = zmax", "Shape \"sphere\" \"float zmin\" 0.5 \"float zmax\" 0.5",

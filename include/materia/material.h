@@ -62,9 +62,15 @@ MT_API mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg
                                      const mt_diffgeom *dg_shading, mt_arena *arena,
                                      mt_error *err);
 
-/* 1 and *out filled for the subsurface materials, 0 for the others. */
-MT_API int mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom,
-                                  const mt_diffgeom *dg_shading, mt_bssrdf *out);
+/* 1 for the materials that have a BSSRDF (subsurface, kdsubsurface), 0 for
+ * the others. */
+MT_API int mt_material_has_bssrdf(const mt_material *m);
+
+/* pbrt-v2's Material::GetBSSRDF: *out at the (unbumped) shading point, MT_OK.
+ * MT_ERR_INVALID for a material without one (mt_material_has_bssrdf). */
+MT_API mt_status mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom,
+                                        const mt_diffgeom *dg_shading, mt_bssrdf *out,
+                                        mt_error *err);
 
 /* pbrt-v2's Fdr: the hemispherically averaged Fresnel reflectance of a
  * dielectric of relative index eta (polynomial fits). */

@@ -17,9 +17,6 @@ typedef struct mt__bssrdf_cache {
     mt_rgb sigma_a, sigma_prime_s;
 } mt__bssrdf_cache;
 
-/* Whether the material has a BSSRDF (mt_material_get_bssrdf would return 1). */
-int mt__material_has_bssrdf(const mt_material *m);
-
 /* mt_material_get_bssrdf with the thread's cache (NULL: none). */
 int mt__material_get_bssrdf_cached(const mt_material *m, const mt_diffgeom *dg_shading,
                                    mt__bssrdf_cache *cache, mt_bssrdf *out);

@@ -94,10 +94,11 @@ mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,
     int i;
     mt_transform id = mt_transform_identity();
     mt_material_ctx none = {NULL, NULL, NULL, NULL};
+    mt_error_clear(err);
     if (!type) return mt_error_set(err, MT_ERR_INVALID, "material: no type given"), NULL;
     for (i = 0; i < NTYPES; ++i)
         if (!strcmp(names[i], type)) return creators[i](mtl2world ? mtl2world : &id, tp, ctx ? ctx : &none, err);
-    mt_error_set(err, MT_ERR_UNSUPPORTED, "material type \"%s\" unknown", type);
+    mt_error_set(err, MT_ERR_NOT_FOUND, "material type \"%s\" unknown", type);
     return NULL;
 }
 
@@ -167,6 +168,7 @@ mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom,
     mt_diffgeom bumped;
     const mt_diffgeom *dgs = dg_shading;
     mt_bsdf *b;
+    mt_error_clear(err);
     if (m->ops->get_bsdf) return m->ops->get_bsdf(m, dg_geom, dg_shading, arena, err);
     if (m->bump) {
         mt_bump(m->bump, dg_geom, dg_shading, &bumped, 0);
@@ -178,14 +180,19 @@ mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom,
     return b;
 }
 
-int mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom, const mt_diffgeom *dg_shading,
-                           mt_bssrdf *out)
+mt_status mt_material_get_bssrdf(const mt_material *m, const mt_diffgeom *dg_geom, const mt_diffgeom *dg_shading,
+                                 mt_bssrdf *out, mt_error *err)
 {
+    mt_error_clear(err);
+    if (!m->ops->bssrdf)
+        return mt_error_set(err, MT_ERR_INVALID, "%s material: no BSSRDF (subsurface and kdsubsurface have one)",
+                            m->ops->type);
     /* pbrt-v2's GetBSSRDF reads the unbumped shading point */
-    return m->ops->bssrdf ? m->ops->bssrdf(m, dg_shading, NULL, out) : 0;
+    m->ops->bssrdf(m, dg_shading, NULL, out);
+    return MT_OK;
 }
 
-int mt__material_has_bssrdf(const mt_material *m) { return m->ops->bssrdf != NULL; }
+int mt_material_has_bssrdf(const mt_material *m) { return m->ops->bssrdf != NULL; }
 
 static int is_constant(const mt_texture *t) { return strcmp(mt_texture_class(t), "constant") == 0; }
 

@@ -62,6 +62,7 @@ static void reset_point(mt_query *q)
 mt_query *mt_query_create(const char *dir, mt_error *err)
 {
     mt_query *q = mt__calloc(1, sizeof *q);
+    mt_error_clear(err);
     if (!q) {
         mt_error_set(err, MT_ERR_NOMEM, "out of memory");
         return NULL;
@@ -185,6 +186,7 @@ static const mt_material *material(mt_query *q, mt_error *err)
 
 mt_bsdf *mt_query_bsdf(mt_query *q, mt_arena *arena, mt_error *err)
 {
+    mt_error_clear(err);
     const mt_material *m = material(q, err);
     mt_diffgeom geom = q->dg;
     if (!m) return NULL;
@@ -336,7 +338,8 @@ static int query_bssrdf(mt_query *q, const char *args, char *out, size_t size)
     mt_error_clear(&err);
     if (!(m = material(q, &err))) return fail(out, size, &err);
     geom.n = q->ng;
-    if (!mt_material_get_bssrdf(m, &geom, &q->dg, &s)) return answer(out, size, "none");
+    if (!mt_material_has_bssrdf(m)) return answer(out, size, "none");
+    if (mt_material_get_bssrdf(m, &geom, &q->dg, &s, &err) != MT_OK) return fail(out, size, &err);
     return answer(out, size, NUM " " NUM " " NUM " " NUM " " NUM " " NUM " " NUM, (double)s.sigma_a.c[0],
                   (double)s.sigma_a.c[1], (double)s.sigma_a.c[2], (double)s.sigma_prime_s.c[0],
                   (double)s.sigma_prime_s.c[1], (double)s.sigma_prime_s.c[2], (double)s.eta);

@@ -191,7 +191,7 @@ typedef struct deposit_arg {
  * inversion of Kd included) are not needed to deposit a point. */
 static int has_bssrdf(const mt__prim_info *info)
 {
-    return info && info->material && mt__material_has_bssrdf(info->material);
+    return info && info->material && mt_material_has_bssrdf(info->material);
 }
 
 static void push(struct cand_buf *b, const mt__ss_point *p)

@@ -67,7 +67,7 @@ mt_status mt__filter_create(mt__filter *f, const char *name, const mt_paramset *
     for (i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
         if (strcmp(kinds[i].name, name) == 0) break;
     if (i == sizeof kinds / sizeof kinds[0])
-        return mt_error_set(err, MT_ERR_UNSUPPORTED,
+        return mt_error_set(err, MT_ERR_NOT_FOUND,
                             "PixelFilter \"%s\" unknown (box, gaussian, mitchell, triangle, sinc)",
                             name);
     f->kind = kinds[i].kind;

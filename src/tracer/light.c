@@ -116,7 +116,7 @@ mt_status mt__light_create(mt__light *l, const char *type, const mt_paramset *ps
         return mt_error_set(err, MT_ERR_UNSUPPORTED,
                             "LightSource \"%s\" is not supported by materia (point, spot, "
                             "distant, infinite)", type);
-    return mt_error_set(err, MT_ERR_UNSUPPORTED, "LightSource \"%s\" unknown", type);
+    return mt_error_set(err, MT_ERR_NOT_FOUND, "LightSource \"%s\" unknown", type);
 }
 
 mt_status mt__area_light_create(mt__light *l, const char *type, const mt_paramset *ps,
@@ -125,7 +125,7 @@ mt_status mt__area_light_create(mt__light *l, const char *type, const mt_paramse
     mt_status st;
     memset(l, 0, sizeof *l);
     if (strcmp(type, "area") != 0 && strcmp(type, "diffuse") != 0)
-        return mt_error_set(err, MT_ERR_UNSUPPORTED,
+        return mt_error_set(err, MT_ERR_NOT_FOUND,
                             "AreaLightSource \"%s\" unknown (\"area\" or \"diffuse\")", type);
     l->kind = MT__LIGHT_AREA;
     l->shape = shape;

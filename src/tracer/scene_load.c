@@ -131,22 +131,22 @@ static mt_status check_option_type(const mt_statement *st, mt_error *err)
     if (strcmp(d, "Camera") == 0 && !name_in(t, cameras))
         return fail(err, MT_ERR_UNSUPPORTED, "Camera \"%s\" is not supported (perspective, orthographic)%s", t, NULL);
     if (strcmp(d, "Film") == 0 && strcmp(t, "image") != 0)
-        return fail(err, MT_ERR_UNSUPPORTED, "Film \"%s\" unknown (\"image\")%s", t, NULL);
+        return fail(err, MT_ERR_NOT_FOUND, "Film \"%s\" unknown (\"image\")%s", t, NULL);
     if (strcmp(d, "PixelFilter") == 0 && !name_in(t, filters))
-        return fail(err, MT_ERR_UNSUPPORTED, "PixelFilter \"%s\" unknown (box, gaussian, mitchell, triangle, sinc)%s", t, NULL);
+        return fail(err, MT_ERR_NOT_FOUND, "PixelFilter \"%s\" unknown (box, gaussian, mitchell, triangle, sinc)%s", t, NULL);
     if (strcmp(d, "Sampler") == 0 && !name_in(t, samplers))
-        return fail(err, MT_ERR_UNSUPPORTED, "Sampler \"%s\" unknown%s", t, NULL);
+        return fail(err, MT_ERR_NOT_FOUND, "Sampler \"%s\" unknown%s", t, NULL);
     if (strcmp(d, "SurfaceIntegrator") == 0 && !name_in(t, surf)) {
-        return fail(err, MT_ERR_UNSUPPORTED,
+        return fail(err, name_in(t, surf_v2) ? MT_ERR_UNSUPPORTED : MT_ERR_NOT_FOUND,
                     name_in(t, surf_v2) ? "SurfaceIntegrator \"%s\" is not supported (path, directlighting, dipolesubsurface)%s"
                                         : "SurfaceIntegrator \"%s\" unknown%s", t, NULL);
     }
     if (strcmp(d, "VolumeIntegrator") == 0 && !name_in(t, vol))
-        return fail(err, MT_ERR_UNSUPPORTED, "VolumeIntegrator \"%s\" unknown (emission, single)%s", t, NULL);
+        return fail(err, MT_ERR_NOT_FOUND, "VolumeIntegrator \"%s\" unknown (emission, single)%s", t, NULL);
     if (strcmp(d, "Renderer") == 0 && strcmp(t, "sampler") != 0)
         return fail(err, MT_ERR_UNSUPPORTED, "Renderer \"%s\" is not supported (\"sampler\")%s", t, NULL);
     if (strcmp(d, "Accelerator") == 0 && !name_in(t, accel))
-        return fail(err, MT_ERR_UNSUPPORTED, "Accelerator \"%s\" unknown (bvh, grid, kdtree)%s", t, NULL);
+        return fail(err, MT_ERR_NOT_FOUND, "Accelerator \"%s\" unknown (bvh, grid, kdtree)%s", t, NULL);
     return MT_OK;
 }
 
@@ -427,6 +427,7 @@ static mt_status parse_text(const void *src, const mt_parse_options *po, mt__loa
 
 mt_scene *mt_scene_load(const char *path, const mt_render_options *o, mt_error *err)
 {
+    mt_error_clear(err);
     return load(parse_path, path, path, o, err);
 }
 
@@ -434,6 +435,7 @@ mt_scene *mt_scene_load_string(const char *text, const char *name, const char *d
                                const mt_render_options *o, mt_error *err)
 {
     text_src t;
+    mt_error_clear(err);
     t.text = text;
     t.name = name ? name : "<string>";
     t.dir = dir;

@@ -87,7 +87,7 @@ mt_shape *mt_shape_create(const char *type, const mt_paramset *ps, const mt_tran
     else if (strcmp(type, "cylinder") == 0) st = mt__cylinder_init(s, ps, err);
     else if (strcmp(type, "trianglemesh") == 0) st = mt__trianglemesh_init(s, ps, opt, err);
     else if (strcmp(type, "loopsubdiv") == 0) st = mt__loopsubdiv_init(s, ps, err);
-    else st = mt_error_set(err, MT_ERR_UNSUPPORTED, "shape \"%s\" unknown", type);
+    else st = mt_error_set(err, MT_ERR_NOT_FOUND, "shape \"%s\" unknown", type);
     if (st == MT_OK) st = mt__shape_areas_init(s, err);
     if (st != MT_OK) {
         mt_shape_destroy(s);
