@@ -93,7 +93,7 @@ static void test_types(void)
     want = mt_spectrum_from_sampled(sl, sv, 3);
     t_check(mt_params_rgb(ps, "S", mt_rgb_gray(0), &sp, &err) == MT_OK && mt_rgb_equal(sp, want),
             "spectrum pairs: one spectrum", "%g vs %g", sp.c[0], want.c[0]);
-    t_check(mt_paramset_find(ps, "S")->count == 1 &&
+    t_check(mt_paramset_find(ps, "S")->nvalues == 3 &&
                 strcmp(mt_paramset_find(ps, "S")->type_name, "spectrum") == 0 &&
                 strcmp(mt_paramset_find(ps, "Ks")->type_name, "color") == 0,
             "type names as written", "%s", mt_paramset_find(ps, "Ks")->type_name);
@@ -252,22 +252,42 @@ static void test_api(void)
 {
     mt_paramset *ps = mt_paramset_create();
     mt_param p;
-    mt_error err;
-    double vals[3] = {1, 2, 3}, inf = 1e308 * 10;
+    mt_error err = MT_ERROR_INIT;
+    double vals[6] = {1, 2, 3, 4, 5, 6}, inf = 1e308 * 10;
     int bad_bool = 2;
+    mt_vec3 v;
+    mt_rgb c;
     memset(&p, 0, sizeof p);
     p.name = "v";
     p.type = MT_PARAM_VECTOR;
-    p.count = 1;
-    p.reals = vals;
+    p.nvalues = 3;
+    p.doubles = vals;
     mt_status rc = mt_paramset_add(ps, &p, &err);
-    t_check(rc == MT_OK && strcmp(mt_paramset_find(ps, "v")->type_name, "vector") == 0,
-            "api: add with a default type name", "%s", err.message);
+    t_check(rc == MT_OK && strcmp(mt_paramset_find(ps, "v")->type_name, "vector") == 0 &&
+                mt_params_vector(ps, "v", mt_v3(0, 0, 0), &v, &err) == MT_OK && v.x == 1 && v.z == 3,
+            "api: an array of three values is one vector, with a default type name", "%s", err.message);
+    /* the old trap: a count of elements where the number of values is meant */
+    p.nvalues = 1;
+    rc = mt_paramset_add(ps, &p, &err);
+    t_check(rc == MT_ERR_INVALID && strcmp(err.param, "v") == 0 && strstr(err.message, "three per element"),
+            "api: one value for a vector rejected, saying why", "%s", err.message);
+    p.nvalues = 6;
+    rc = mt_paramset_add(ps, &p, &err);
+    t_check(rc == MT_OK && mt_params_vector(ps, "v", mt_v3(0, 0, 0), &v, &err) == MT_ERR_INVALID &&
+                strstr(err.message, "found 6 values"),
+            "api: two vectors are not one", "%s", err.message);
+    p.nvalues = 3;
+    p.doubles = NULL;
+    rc = mt_paramset_add(ps, &p, &err);
+    t_check(rc == MT_ERR_INVALID && strstr(err.message, "NULL"), "api: an array without its values rejected",
+            "%s", err.message);
+    p.doubles = vals;
     vals[1] = inf;
     rc = mt_paramset_add(ps, &p, &err);
     t_check(rc == MT_ERR_INVALID && strcmp(err.param, "v") == 0, "api: infinite value rejected",
             "%s", err.message);
     p.type = MT_PARAM_BOOL;
+    p.nvalues = 1;
     p.ints = &bad_bool;
     rc = mt_paramset_add(ps, &p, &err);
     t_check(rc == MT_ERR_INVALID, "api: bool 2 rejected", "%s", err.message);
@@ -276,6 +296,41 @@ static void test_api(void)
     t_check(rc == MT_ERR_INVALID, "api: empty name rejected", "%s", err.message);
     t_check(mt_paramset_count(ps) == 1 && mt_paramset_at(ps, 1) == NULL, "api: count and at",
             "%d", mt_paramset_count(ps));
+    /* one value, as the helpers make it */
+    p = mt_param_rgb("Kd", 0.25, 0.5, 0.75);
+    rc = mt_paramset_add(ps, &p, &err);
+    t_check(rc == MT_OK && mt_params_rgb(ps, "Kd", mt_rgb_gray(0), &c, &err) == MT_OK &&
+                c.c[0] == (mt_real)0.25 && c.c[2] == (mt_real)0.75 &&
+                mt_paramset_find(ps, "Kd")->nvalues == 3 &&
+                strcmp(mt_paramset_find(ps, "Kd")->type_name, "rgb") == 0,
+            "api: mt_param_rgb is one RGB, stored as three values", "%s", err.message);
+    p = mt_param_int("n", 3);
+    p.value[0] = 2.5;
+    t_check(mt_paramset_add(ps, &p, &err) == MT_ERR_INVALID && strcmp(err.param, "n") == 0,
+            "api: a non-integral integer rejected", "%s", err.message);
+    p = mt_param_bool("b", 1);
+    p.value[0] = 2;
+    t_check(mt_paramset_add(ps, &p, &err) == MT_ERR_INVALID, "api: a one-value bool of 2 rejected", "%s",
+            err.message);
+    p = mt_param_texture("Kd", NULL);
+    t_check(mt_paramset_add(ps, &p, &err) == MT_ERR_INVALID && strstr(err.message, "NULL"),
+            "api: a texture without its name rejected", "%s", err.message);
+    {
+        int n, b;
+        const char *s;
+        mt_real f;
+        mt_param q[4];
+        q[0] = mt_param_int("n", -7);
+        q[1] = mt_param_bool("b", 5);
+        q[2] = mt_param_string("s", "text");
+        q[3] = mt_param_float("f", 0.1);
+        for (n = 0; n < 4; ++n) mt_paramset_add(ps, &q[n], &err);
+        t_check(mt_params_int(ps, "n", 0, &n, &err) == MT_OK && n == -7 &&
+                    mt_params_bool(ps, "b", 0, &b, &err) == MT_OK && b == 1 &&
+                    mt_params_string(ps, "s", "", &s, &err) == MT_OK && strcmp(s, "text") == 0 &&
+                    mt_params_float(ps, "f", 0, &f, &err) == MT_OK && f == (mt_real)0.1,
+                "api: the helpers' integer, bool, string and float read back", "%s", err.message);
+    }
     mt_paramset_destroy(ps);
 }
 
@@ -317,7 +372,7 @@ static void test_filenames(void)
                     mt_rgb_equal(c, want),
                 "spectrum SPD file relative to the statement's directory", "%s", err.message);
         ps = params_of("\"spectrum eta\" [\"spds/x.spd\" \"spds/x.spd\"]", dir, &err);
-        t_check(ps && mt_paramset_find(ps, "eta")->count == 2, "spectrum: one per file", "%s",
+        t_check(ps && mt_paramset_find(ps, "eta")->nvalues == 6, "spectrum: one per file", "%s",
                 err.message);
         declare_fails("\"spectrum eta\" \"missing.spd\"", 11, "eta", "missing.spd",
                       "spectrum: missing SPD file");

@@ -138,7 +138,7 @@ static void test_locations(void)
             log_[0].nargs);
     p = mt_paramset_find(log_[1].params, "radius");
     t_check(log_[1].line == 5 && log_[1].column == 1 && p && p->line == 6 && p->column == 3 &&
-                p->reals[0] == 2 && strcmp(p->file, "t.pbrt") == 0,
+                p->doubles[0] == 2 && strcmp(p->file, "t.pbrt") == 0,
             "a parameter list over three lines, located", "%d:%d", p ? p->line : 0,
             p ? p->column : 0);
     t_check(log_[2].line == 9 && log_[2].column == 2, "a tab counts one column", "%d:%d",

@@ -366,13 +366,7 @@ static void test_lens_texture_filtering(void)
 
 static void add_float(mt_paramset *ps, const char *name, double v)
 {
-    mt_param p;
-    memset(&p, 0, sizeof p);
-    p.name = name;
-    p.type = MT_PARAM_FLOAT;
-    p.type_name = "float";
-    p.count = 1;
-    p.reals = &v;
+    mt_param p = mt_param_float(name, v);
     mt_paramset_add(ps, &p, NULL);
 }
 
@@ -984,15 +978,7 @@ static void test_infinite_lights(void)
     mt_image_write(path, &img, NULL, 0, &err);
     mt_image_destroy(&img);
     {
-        mt_param p;
-        const char *names[1];
-        memset(&p, 0, sizeof p);
-        names[0] = path;
-        p.name = "mapname";
-        p.type = MT_PARAM_STRING;
-        p.type_name = "string";
-        p.count = 1;
-        p.strings = names;
+        mt_param p = mt_param_string("mapname", path);
         mt_paramset_add(ps, &p, NULL);
     }
     if (mt__light_create(&l, "infinite", ps, &rot, MT_MODE_PBRT_V2, &err) == MT_OK) {

@@ -7,6 +7,7 @@
  */
 #include "materia/parser.h"
 #include "support/tex_util.h"
+#include "textures/texparams.h"
 
 static mt_paramset *kept;
 

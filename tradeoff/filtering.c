@@ -349,19 +349,11 @@ static double check_lookup_fn(const void *mode, const footprint *f)
 static mt_texture *checkerboard(const char *aamode, mt_texture_table *table)
 {
     mt_paramset *ps = mt_paramset_create();
-    mt_param p;
+    mt_param p = mt_param_string("aamode", aamode);
     mt_texparams tp;
     mt_error err;
     mt_texture *t;
-    const char *v[1];
     if (!ps) die("out of memory", NULL);
-    v[0] = aamode;
-    memset(&p, 0, sizeof p);
-    p.name = "aamode";
-    p.type = MT_PARAM_STRING;
-    p.type_name = "string";
-    p.count = 1;
-    p.strings = v;
     if (mt_paramset_add(ps, &p, &err) != MT_OK) die("parameters", &err);
     tp.geom = ps;
     tp.material = NULL;

@@ -95,6 +95,58 @@ MT_API mt_material *mt_material_from_state(const struct mt_state *s, const mt_pa
  * statement: errors in its parameters show there). NULL with err filled. */
 MT_API mt_material *mt_material_named_from_state(const struct mt_state *s, const char *name, mt_error *err);
 
+/* A material from pbrt-v2 statements given as text, in one call:
+ *   mt_material *m = mt_material_from_text(
+ *       "Material \"plastic\" \"rgb Kd\" [0.5 0.5 0.5] \"float roughness\" 0.05",
+ *       NULL, &err);
+ * The statements (Texture, Material, MakeNamedMaterial, NamedMaterial,
+ * transforms, AttributeBegin/End: mt_state_apply_text) are applied to state,
+ * then the material they leave current is made (mt_material_from_state):
+ * the last Material statement's, or the NamedMaterial selected. The text
+ * must hold at least one Material or NamedMaterial statement.
+ *
+ * state may be NULL: a temporary state in pbrt-v2 mode is used and
+ * destroyed, so the text must define the textures and named materials it
+ * uses. With a state of the caller's (mt_state_create), named textures and
+ * materials defined by earlier calls, mt_state_apply_text or
+ * mt_state_set_texture are found, this call's definitions stay in it, and
+ * its mode, current transform and warning callback apply. Relative file
+ * names (image maps, measured data, SPD files) resolve against the current
+ * directory.
+ *
+ * Parameters that nothing read (a misspelt "Kdd", a "float Kd" where a
+ * spectrum is read) go to the state's warning callback, one warning each;
+ * when there is none (always with a NULL state) the first is an error,
+ * MT_ERR_INVALID naming it and its line. Nothing is silently ignored.
+ *
+ * Returns a new reference (mt_material_destroy), or NULL with err filled:
+ * a malformed statement (MT_ERR_PARSE, with line and column), a statement
+ * other than those above, an unknown type (MT_ERR_NOT_FOUND), a parameter
+ * out of range or of the wrong type, an undefined texture or named
+ * material, an unreadable file. The statements before a failing one stay
+ * applied to the caller's state. Thread safety: state is modified, so one
+ * state is used by one thread at a time; with a NULL state any number of
+ * threads may call this at once. */
+MT_API mt_material *mt_material_from_text(const char *text, struct mt_state *state, mt_error *err);
+
+/* A material of pbrt-v2 type `type` ("plastic", ...) from a list of typed
+ * parameters (params.h's helpers), in one call:
+ *   const mt_param p[] = {mt_param_rgb("Kd", 0.5, 0.5, 0.5), mt_param_float("roughness", 0.05)};
+ *   mt_material *m = mt_material_from_params("plastic", p, 2, NULL, &err);
+ * the same as the text `Material "plastic" "rgb Kd" [0.5 0.5 0.5] "float
+ * roughness" 0.05`, with pbrt-v2's names and defaults (docs/REFERENCE.md).
+ * params (nparams of them; NULL when 0) are copied: they may go away after
+ * the call. state may be NULL: then pbrt-v2 mode, the identity transform,
+ * no named textures (a "texture" parameter fails with MT_ERR_NOT_FOUND) and
+ * no named materials (a "mix" fails). With a state, its named textures and
+ * materials, mode, current transform and warning callback are used; the
+ * state is not modified. Unused parameters and errors as for
+ * mt_material_from_text. Returns a new reference, or NULL with err filled.
+ * Thread safety: any number of threads may call this at once, sharing a
+ * state only when no thread modifies it. */
+MT_API mt_material *mt_material_from_params(const char *type, const mt_param *params, int nparams,
+                                            const struct mt_state *state, mt_error *err);
+
 /* The names of the 13 material types; *count receives their number. */
 MT_API const char *const *mt_material_types(int *count);
 

@@ -44,23 +44,117 @@ typedef enum mt_param_type {
     MT_PARAM_TEXTURE
 } mt_param_type;
 
-/* One parameter. Values live in exactly one of the arrays:
- *   float            reals, count values
- *   integer, bool    ints, count values (bool: 0 or 1)
- *   string, texture  strings, count values
- *   point/vector/normal, spectrum   reals, 3 * count values */
+/* One parameter: a name, a type, and either one value or an array of them.
+ *
+ * One value (nvalues == 0), what the mt_param_* helpers below make:
+ *   float, integer, bool            value[0] (an integer must be integral, a
+ *                                   bool 0 or 1)
+ *   point, vector, normal, spectrum value[0..2] (a spectrum is RGB)
+ *   string, texture                 string (a texture parameter's string is
+ *                                   the name of a named texture)
+ * An array (nvalues > 0), as a scene file's [ ... ] gives: nvalues is the
+ * number of values in the array, three per point, vector, normal or RGB
+ * spectrum (nvalues = 3 for one RGB, 6 for two points):
+ *   float, point, vector, normal, spectrum   doubles[0 .. nvalues-1]
+ *   integer, bool                            ints[0 .. nvalues-1]
+ *   string, texture                          strings[0 .. nvalues-1]
+ * Numbers are double whatever mt_real is, as a scene file's are read; they
+ * must be finite and within float's range (pbrt-v2 reads floats).
+ * mt_paramset_add copies everything: the parameter and its arrays may go
+ * away after the call. Every parameter a paramset holds (mt_paramset_at,
+ * mt_paramset_find) is in the array form, with type_name set.
+ *
+ * In C99 a designated initializer also works:
+ *   mt_param p = {.name = "Kd", .type = MT_PARAM_SPECTRUM, .value = {0.5, 0.5, 0.5}};
+ * In C++ (no designated initializers before C++20), use the helpers. */
 typedef struct mt_param {
     const char *name;
     mt_param_type type;
-    const char *type_name; /* as written: "color", "rgb", "xyz", "spectrum", "point3"... */
-    int count;
-    const double *reals;
+    double value[3];      /* one value (nvalues == 0) */
+    const char *string;   /* one string or texture name (nvalues == 0) */
+    int nvalues;          /* > 0: the values are in one of the arrays below */
+    const double *doubles;
     const int *ints;
     const char *const *strings;
-    const char *file; /* where the parameter was written (may be NULL) */
+    const char *type_name; /* the type as written ("rgb", "color", "xyz", "point3"...);
+                              NULL: the type's own name */
+    const char *file;      /* where the parameter was written (NULL: nowhere) */
     int line, column;
-    const char *dir;  /* directory that relative file names resolve against */
+    const char *dir;       /* directory that relative file names resolve against
+                              (NULL: the current directory) */
 } mt_param;
+
+/* Helpers that make one-value parameters, for lists in C and C++:
+ *   const mt_param params[] = {mt_param_rgb("Kd", 0.5, 0.5, 0.5),
+ *                              mt_param_float("roughness", 0.1)};
+ * name (and a string's text) must outlive the list's use; nothing is
+ * allocated. */
+static inline mt_param mt__param_one(const char *name, mt_param_type type, const char *type_name)
+{
+    mt_param p;
+    memset(&p, 0, sizeof p);
+    p.name = name;
+    p.type = type;
+    p.type_name = type_name;
+    return p;
+}
+static inline mt_param mt__param_three(const char *name, mt_param_type type, const char *type_name,
+                                       double a, double b, double c)
+{
+    mt_param p = mt__param_one(name, type, type_name);
+    p.value[0] = a;
+    p.value[1] = b;
+    p.value[2] = c;
+    return p;
+}
+/* "float name" [v] */
+static inline mt_param mt_param_float(const char *name, double v)
+{
+    return mt__param_three(name, MT_PARAM_FLOAT, "float", v, 0, 0);
+}
+/* "integer name" [v] */
+static inline mt_param mt_param_int(const char *name, int v)
+{
+    return mt__param_three(name, MT_PARAM_INTEGER, "integer", v, 0, 0);
+}
+/* "bool name" "true" (v != 0) or "false" */
+static inline mt_param mt_param_bool(const char *name, int v)
+{
+    return mt__param_three(name, MT_PARAM_BOOL, "bool", v != 0, 0, 0);
+}
+/* "rgb name" [r g b] */
+static inline mt_param mt_param_rgb(const char *name, double r, double g, double b)
+{
+    return mt__param_three(name, MT_PARAM_SPECTRUM, "rgb", r, g, b);
+}
+/* "point name" [x y z], "vector name" [x y z], "normal name" [x y z] */
+static inline mt_param mt_param_point(const char *name, double x, double y, double z)
+{
+    return mt__param_three(name, MT_PARAM_POINT, "point", x, y, z);
+}
+static inline mt_param mt_param_vector(const char *name, double x, double y, double z)
+{
+    return mt__param_three(name, MT_PARAM_VECTOR, "vector", x, y, z);
+}
+static inline mt_param mt_param_normal(const char *name, double x, double y, double z)
+{
+    return mt__param_three(name, MT_PARAM_NORMAL, "normal", x, y, z);
+}
+/* "string name" "s" */
+static inline mt_param mt_param_string(const char *name, const char *s)
+{
+    mt_param p = mt__param_one(name, MT_PARAM_STRING, "string");
+    p.string = s;
+    return p;
+}
+/* "texture name" "texture_name": the named texture (mt_state) bound to
+ * texture_name, in the namespace (float or spectrum) the parameter needs. */
+static inline mt_param mt_param_texture(const char *name, const char *texture_name)
+{
+    mt_param p = mt__param_one(name, MT_PARAM_TEXTURE, "texture");
+    p.string = texture_name;
+    return p;
+}
 
 typedef struct mt_paramset mt_paramset;
 
@@ -111,18 +205,20 @@ MT_API mt_status mt_params_rgb(const mt_paramset *ps, const char *name, mt_rgb d
 MT_API mt_status mt_params_texture(const mt_paramset *ps, const char *name, const char **out,
                                    mt_error *err);
 
-/* Arrays (mesh data and the like): *values = NULL, *count = 0 when absent.
- * For points, vectors and normals *count is the number of triples. */
+/* Arrays (mesh data and the like): *values points into the paramset (valid
+ * while it lives and the parameter is not replaced); NULL and a count of 0
+ * when absent. The count is of elements: floats or integers, or points,
+ * vectors or normals (whose values hold three numbers each). */
 MT_API mt_status mt_params_floats(const mt_paramset *ps, const char *name, const double **values,
-                                  int *count, mt_error *err);
+                                  int *nfloats, mt_error *err);
 MT_API mt_status mt_params_ints(const mt_paramset *ps, const char *name, const int **values,
-                                int *count, mt_error *err);
+                                int *nints, mt_error *err);
 MT_API mt_status mt_params_points(const mt_paramset *ps, const char *name, const double **values,
-                                  int *count, mt_error *err);
+                                  int *npoints, mt_error *err);
 MT_API mt_status mt_params_normals(const mt_paramset *ps, const char *name,
-                                   const double **values, int *count, mt_error *err);
+                                   const double **values, int *nnormals, mt_error *err);
 MT_API mt_status mt_params_vectors(const mt_paramset *ps, const char *name,
-                                   const double **values, int *count, mt_error *err);
+                                   const double **values, int *nvectors, mt_error *err);
 
 /* Warnings are delivered to the caller (the library never prints). */
 typedef void (*mt_warning_fn)(void *ctx, const char *file, int line, const char *message);

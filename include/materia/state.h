@@ -51,6 +51,23 @@ MT_API void mt_state_set_warning(mt_state *s, mt_warning_fn warn, void *ctx);
 MT_API mt_status mt_state_apply(mt_state *s, const mt_statement *st, int *handled,
                                 mt_error *err);
 
+/* Applies pbrt-v2 statements given as text (several, over several lines):
+ * Texture, Material, MakeNamedMaterial, NamedMaterial, the transforms,
+ * CoordinateSystem, CoordSysTransform, AttributeBegin/End and
+ * TransformBegin/End. Any other directive (Shape, WorldBegin, ...) is an
+ * error. A Texture statement's unused parameters go to the warning
+ * callback, or are an error when there is none; a Material's are reported
+ * when the material is made (mt_material_from_text). Relative file names
+ * resolve against the current directory. MT_OK, or an error naming the line
+ * and column; the statements before the failing one stay applied. */
+MT_API mt_status mt_state_apply_text(mt_state *s, const char *text, mt_error *err);
+
+/* Binds tex under name in the state's named textures (in tex's namespace,
+ * float or spectrum), as a Texture statement would: a "texture" parameter
+ * naming it finds it from now on. The state takes its own reference; an
+ * earlier binding of the name is released. */
+MT_API mt_status mt_state_set_texture(mt_state *s, const char *name, mt_texture *tex, mt_error *err);
+
 /* The current transform (pbrt-v2's curTransform[0], the start-time
  * transform that textures, materials and static shapes use). */
 MT_API const mt_transform *mt_state_transform(const mt_state *s);

@@ -29,6 +29,7 @@ extern "C" {
 
 typedef struct mt_texture mt_texture;
 typedef struct mt_texture_table mt_texture_table;
+struct mt_state; /* materia/state.h */
 
 /* Evaluation reads dg's p, u, v and screen-space differentials, allocates
  * nothing and may run in any number of threads at once; the result is finite
@@ -69,33 +70,6 @@ typedef struct mt_texparams {
     mt_mode mode;
 } mt_texparams;
 
-/* TextureParams::GetFloatTexture / GetSpectrumTexture: the named texture a
- * "texture" parameter gives, else a constant from the value or def. Returns a
- * new reference, or NULL (err filled: unknown texture name, wrong type). */
-MT_API mt_texture *mt_texparams_float_texture(const mt_texparams *tp, const char *name,
-                                              mt_real def, mt_error *err);
-MT_API mt_texture *mt_texparams_spectrum_texture(const mt_texparams *tp, const char *name,
-                                                 mt_rgb def, mt_error *err);
-/* A float texture only when the parameter is present (e.g. "bumpmap"):
- * *out = NULL when absent. */
-MT_API mt_status mt_texparams_float_texture_opt(const mt_texparams *tp, const char *name,
-                                                mt_texture **out, mt_error *err);
-/* Scalar lookups, geometry parameters first (pbrt-v2 TextureParams::Find*). */
-MT_API mt_status mt_texparams_float(const mt_texparams *tp, const char *name, mt_real def,
-                                    mt_real *out, mt_error *err);
-MT_API mt_status mt_texparams_int(const mt_texparams *tp, const char *name, int def, int *out,
-                                  mt_error *err);
-MT_API mt_status mt_texparams_bool(const mt_texparams *tp, const char *name, int def, int *out,
-                                   mt_error *err);
-MT_API mt_status mt_texparams_string(const mt_texparams *tp, const char *name, const char *def,
-                                     const char **out, mt_error *err);
-MT_API mt_status mt_texparams_filename(const mt_texparams *tp, const char *name,
-                                       const char *def, char *out, size_t size, mt_error *err);
-MT_API mt_status mt_texparams_vector(const mt_texparams *tp, const char *name, mt_vec3 def,
-                                     mt_vec3 *out, mt_error *err);
-MT_API mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_rgb def,
-                                  mt_rgb *out, mt_error *err);
-
 /* Creates a texture of pbrt-v2 class class_name ("constant", "checkerboard",
  * ...), float or spectrum, declared under the transform tex2world (pbrt-v2's
  * current transform at the Texture statement; NULL for the identity). NULL
@@ -107,6 +81,35 @@ MT_API mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_r
 MT_API mt_texture *mt_texture_create(const char *class_name, int is_float,
                                      const mt_transform *tex2world, const mt_texparams *tp,
                                      mt_error *err);
+
+/* A texture from pbrt-v2 Texture statements given as text, in one call:
+ *   mt_texture *t = mt_texture_from_text(
+ *       "Texture \"checks\" \"color\" \"checkerboard\" \"float uscale\" 4 \"float vscale\" 4",
+ *       NULL, &err);
+ * The statements are applied to state as mt_material_from_text applies
+ * them (state NULL: a temporary one in pbrt-v2 mode); the texture the last
+ * Texture statement defined is returned as a new reference
+ * (mt_texture_destroy), and also stays bound in the caller's state. Unused
+ * parameters go to the state's warning callback, or are an error when it
+ * has none. NULL with err filled on any error, or when the text has no
+ * Texture statement. Thread safety as mt_material_from_text. */
+MT_API mt_texture *mt_texture_from_text(const char *text, struct mt_state *state, mt_error *err);
+
+/* A texture of pbrt-v2 class class_name, float (is_float != 0) or spectrum,
+ * from a list of typed parameters, as a Texture statement with them would
+ * make it:
+ *   const mt_param p[] = {mt_param_float("uscale", 4), mt_param_float("vscale", 4)};
+ *   mt_texture *t = mt_texture_from_params("checkerboard", 0, p, 2, NULL, &err);
+ * params are copied. state may be NULL (pbrt-v2 mode, the identity
+ * transform, no named textures); with a state, its named textures, mode,
+ * current transform and warning callback are used and it is not modified.
+ * To use the texture in a material by name, bind it with
+ * mt_state_set_texture. Unused parameters go to the state's warning
+ * callback, or are an error when there is none. A new reference, or NULL
+ * with err filled (MT_ERR_NOT_FOUND for an unknown class). Thread safety as
+ * mt_material_from_params. */
+MT_API mt_texture *mt_texture_from_params(const char *class_name, int is_float, const mt_param *params,
+                                          int nparams, const struct mt_state *state, mt_error *err);
 
 /* The class names, for help texts and tests; *count receives their number. */
 MT_API const char *const *mt_texture_classes(int *count);

@@ -6,11 +6,13 @@
 #include <string.h>
 #include "materia/state.h"
 #include "materials/material_impl.h"
+#include "materials/from_state.h"
 
 #define MAX_NESTING 16 /* mixes of mixes; a cycle of names stops here */
 
 typedef struct resolver {
-    const mt_state *state;
+    const mt_state *state; /* NULL: no named materials */
+    mt_mode mode;
     int depth;
     mt_material *made[MAX_NESTING * 2]; /* named materials created for the mix */
     int nmade;
@@ -27,6 +29,10 @@ static const mt_material *lookup(void *ctx, const char *name)
     if (r->depth >= MAX_NESTING || r->nmade >= MAX_NESTING * 2) {
         mt_error_set(r->err, MT_ERR_LIMIT, "mix material: named materials nest deeper than %d (a cycle?)",
                      MAX_NESTING);
+        return NULL;
+    }
+    if (!r->state) {
+        mt_error_set(r->err, MT_ERR_NOT_FOUND, "no named material \"%s\" (no state to look it up in)", name);
         return NULL;
     }
     if (mt_state_named_material(r->state, name, &spec, r->err) != MT_OK) return NULL;
@@ -48,38 +54,40 @@ static mt_material *from_spec(resolver *r, const mt_material_spec *spec, const m
     tp.geom = spec->name ? spec->geom : shape_params;
     tp.material = spec->material;
     tp.textures = spec->textures;
-    tp.mode = mt_state_mode(r->state);
+    tp.mode = r->mode;
     return mt_material_create(spec->type, &spec->transform, &tp, &ctx, r->err);
+}
+
+/* The material spec describes, with a mix's named materials from s (may be
+ * NULL); the named materials made on the way are released once the mix
+ * holds them. */
+mt_material *mt__material_from_spec(const mt_state *s, const mt_material_spec *spec, mt_mode mode,
+                                    const mt_paramset *shape_params, mt_error *err)
+{
+    resolver r;
+    mt_material *m;
+    int i;
+    memset(&r, 0, sizeof r);
+    r.state = s;
+    r.mode = mode;
+    r.err = err;
+    m = from_spec(&r, spec, shape_params);
+    for (i = 0; i < r.nmade; ++i) mt_material_destroy(r.made[i]);
+    return m;
 }
 
 mt_material *mt_material_from_state(const mt_state *s, const mt_paramset *shape_params, mt_error *err)
 {
-    resolver r;
     mt_material_spec spec;
-    mt_material *m;
-    int i;
     mt_error_clear(err);
-    memset(&r, 0, sizeof r);
-    r.state = s;
-    r.err = err;
     mt_state_material(s, &spec);
-    m = from_spec(&r, &spec, shape_params);
-    for (i = 0; i < r.nmade; ++i) mt_material_destroy(r.made[i]);
-    return m;
+    return mt__material_from_spec(s, &spec, mt_state_mode(s), shape_params, err);
 }
 
 mt_material *mt_material_named_from_state(const mt_state *s, const char *name, mt_error *err)
 {
-    resolver r;
     mt_material_spec spec;
-    mt_material *m;
-    int i;
     mt_error_clear(err);
     if (mt_state_named_material(s, name, &spec, err) != MT_OK) return NULL;
-    memset(&r, 0, sizeof r);
-    r.state = s;
-    r.err = err;
-    m = from_spec(&r, &spec, NULL);
-    for (i = 0; i < r.nmade; ++i) mt_material_destroy(r.made[i]);
-    return m;
+    return mt__material_from_spec(s, &spec, mt_state_mode(s), NULL, err);
 }

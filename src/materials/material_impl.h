@@ -7,6 +7,7 @@
 
 #include "materia/bump.h"
 #include "materia/material.h"
+#include "textures/texparams.h"
 #include "bsdf_internal.h"
 #include "materials/bssrdf_cache.h"
 

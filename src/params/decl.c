@@ -300,11 +300,11 @@ mt_status mt__param_declare(mt_paramset *ps, const char *decl, const mt__decl_va
     n = v->nstrs ? v->nstrs : v->nnums;
     switch (k) {
     case K_FLOAT: case K_POINT: case K_VECTOR: case K_NORMAL:
-        p.count = k == K_FLOAT ? n : n / 3;
-        p.reals = v->nums;
+        p.nvalues = n;
+        p.doubles = v->nums;
         break;
     case K_STRING: case K_TEXTURE:
-        p.count = n;
+        p.nvalues = n;
         p.strings = v->strs;
         break;
     case K_INT: case K_BOOL:
@@ -312,17 +312,19 @@ mt_status mt__param_declare(mt_paramset *ps, const char *decl, const mt__decl_va
         if (!ints) return decl_error(err, MT_ERR_NOMEM, site, d.name, "out of memory");
         st = k == K_INT ? to_ints(v->nums, n, ints, d.name, site, err)
                         : to_bools(v->strs, n, ints, d.name, site, err);
-        p.count = n;
+        p.nvalues = n;
         p.ints = ints;
         break;
-    default: /* colours */
+    default: { /* colours, as RGB triples */
         /* a sampled spectrum's pairs make one spectrum (AddSampledSpectrum) */
-        p.count = k == K_SPECTRUM && !v->nstrs ? 1 : n / group_of(k, v);
-        reals = mt__malloc((size_t)p.count * 3 * sizeof *reals);
+        int nspectra = k == K_SPECTRUM && !v->nstrs ? 1 : n / group_of(k, v);
+        reals = mt__malloc((size_t)nspectra * 3 * sizeof *reals);
         if (!reals) return decl_error(err, MT_ERR_NOMEM, site, d.name, "out of memory");
-        st = colours(k, v, d.name, site, reals, p.count, err);
-        p.reals = reals;
+        st = colours(k, v, d.name, site, reals, nspectra, err);
+        p.nvalues = 3 * nspectra;
+        p.doubles = reals;
         break;
+    }
     }
     if (st == MT_OK) st = mt_paramset_add(ps, &p, err);
     mt__free(ints);

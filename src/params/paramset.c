@@ -8,6 +8,7 @@
  * of another type or with the wrong number of values, a lookup here fails
  * with a message that names the parameter and where it was written.
  */
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 #include "core/alloc.h"
@@ -67,9 +68,9 @@ static void entry_free(entry *e)
 {
     int i;
     if (e->p.strings)
-        for (i = 0; i < e->p.count; ++i) mt__free((void *)e->p.strings[i]);
+        for (i = 0; i < e->p.nvalues; ++i) mt__free((void *)e->p.strings[i]);
     mt__free((void *)e->p.strings);
-    mt__free((void *)e->p.reals);
+    mt__free((void *)e->p.doubles);
     mt__free((void *)e->p.ints);
     mt__free((void *)e->p.name);
     mt__free((void *)e->p.type_name);
@@ -98,57 +99,94 @@ static void *dup_bytes(const void *src, size_t n, int *ok)
     return d;
 }
 
-/* A deep copy of p into e (e zeroed on failure). */
+/* The number of values p holds: its array's, or one value's (1, or 3 for a
+ * point, vector, normal or spectrum). */
+static int nvalues_of(const mt_param *p)
+{
+    return p->nvalues > 0 ? p->nvalues : type_width(p->type);
+}
+
+/* A deep copy of p into e, always in the array form (e zeroed on failure). */
 static int entry_copy(entry *e, const mt_param *p, int used)
 {
-    int ok = 1, i;
-    size_t nvals = (size_t)p->count * (size_t)type_width(p->type);
+    int ok = 1, i, n = nvalues_of(p);
+    const int inline_value = p->nvalues == 0;
     memset(e, 0, sizeof *e);
     e->used = used;
     e->p.type = p->type;
-    e->p.count = p->count;
+    e->p.nvalues = n;
     e->p.line = p->line;
     e->p.column = p->column;
     e->p.name = dup_or_null(p->name, &ok);
     e->p.type_name = dup_or_null(p->type_name ? p->type_name : type_names[p->type], &ok);
     e->p.file = dup_or_null(p->file, &ok);
     e->p.dir = dup_or_null(p->dir, &ok);
-    if (is_real_type(p->type) && nvals)
-        e->p.reals = dup_bytes(p->reals, nvals * sizeof *p->reals, &ok);
-    if (is_int_type(p->type) && nvals) e->p.ints = dup_bytes(p->ints, nvals * sizeof *p->ints, &ok);
-    if (is_string_type(p->type) && nvals && ok) {
-        const char **s = mt__calloc(nvals, sizeof *s);
+    if (is_real_type(p->type))
+        e->p.doubles = dup_bytes(inline_value ? p->value : p->doubles, (size_t)n * sizeof(double), &ok);
+    if (is_int_type(p->type) && inline_value) {
+        int v = (int)p->value[0];
+        e->p.ints = dup_bytes(&v, sizeof v, &ok);
+    } else if (is_int_type(p->type)) {
+        e->p.ints = dup_bytes(p->ints, (size_t)n * sizeof *p->ints, &ok);
+    }
+    if (is_string_type(p->type) && ok) {
+        const char **s = mt__calloc((size_t)n, sizeof *s);
         e->p.strings = s;
         if (!s) ok = 0;
-        for (i = 0; ok && i < p->count; ++i) s[i] = dup_or_null(p->strings[i], &ok);
+        for (i = 0; ok && i < n; ++i) s[i] = dup_or_null(inline_value ? p->string : p->strings[i], &ok);
     }
     if (!ok) entry_free(e);
     return ok;
 }
 
+/* Whether an integer or bool given as one value (a double) is acceptable. */
+static mt_status check_int_value(const mt_param *p, mt_error *err)
+{
+    double v = p->value[0];
+    if (p->type == MT_PARAM_BOOL && v != 0 && v != 1)
+        return mt_error_param(err, MT_ERR_INVALID, p->name, "bool values are 0 or 1, not %g", v);
+    if (!(v >= INT_MIN && v <= INT_MAX) || v != floor(v))
+        return mt_error_param(err, MT_ERR_INVALID, p->name, "integer value %g is not an int", v);
+    return MT_OK;
+}
+
 /* Whether p is a well-formed parameter; the reason in err when not. */
 static mt_status check_param(const mt_param *p, mt_error *err)
 {
-    size_t i, nvals;
+    int i, n, w;
     if (!p || !p->name || !p->name[0])
         return mt_error_set(err, MT_ERR_INVALID, "a parameter needs a name");
     if ((unsigned)p->type > MT_PARAM_TEXTURE)
         return mt_error_param(err, MT_ERR_INVALID, p->name, "unknown parameter type %d",
                               (int)p->type);
-    if (p->count < 0 || p->count > MT__MAX_VALUES / 3)
-        return mt_error_param(err, MT_ERR_INVALID, p->name, "bad value count %d", p->count);
-    nvals = (size_t)p->count * (size_t)type_width(p->type);
-    if (nvals && ((is_real_type(p->type) && !p->reals) || (is_int_type(p->type) && !p->ints) ||
-                  (is_string_type(p->type) && !p->strings)))
-        return mt_error_param(err, MT_ERR_INVALID, p->name, "values missing");
-    for (i = 0; is_real_type(p->type) && i < nvals; ++i)
-        if (!mt__fits_real(p->reals[i]))
+    w = type_width(p->type);
+    if (p->nvalues < 0 || p->nvalues > MT__MAX_VALUES)
+        return mt_error_param(err, MT_ERR_INVALID, p->name, "bad number of values %d", p->nvalues);
+    if (p->nvalues % w != 0)
+        return mt_error_param(err, MT_ERR_INVALID, p->name,
+                              "%d values: a %s parameter takes three per element (nvalues = 3 for one)",
+                              p->nvalues, type_names[p->type]);
+    if (p->nvalues == 0) { /* one value */
+        if (is_string_type(p->type))
+            return p->string ? MT_OK : mt_error_param(err, MT_ERR_INVALID, p->name, "NULL string");
+        for (i = 0; i < w; ++i)
+            if (!mt__fits_real(p->value[i]))
+                return mt_error_param(err, MT_ERR_INVALID, p->name,
+                                      "value %g is not finite or out of range", p->value[i]);
+        return is_int_type(p->type) ? check_int_value(p, err) : MT_OK;
+    }
+    n = p->nvalues;
+    if ((is_real_type(p->type) && !p->doubles) || (is_int_type(p->type) && !p->ints) ||
+        (is_string_type(p->type) && !p->strings))
+        return mt_error_param(err, MT_ERR_INVALID, p->name, "nvalues is %d but its array is NULL", n);
+    for (i = 0; is_real_type(p->type) && i < n; ++i)
+        if (!mt__fits_real(p->doubles[i]))
             return mt_error_param(err, MT_ERR_INVALID, p->name,
-                                  "value %g is not finite or out of range", p->reals[i]);
-    for (i = 0; p->type == MT_PARAM_BOOL && i < nvals; ++i)
+                                  "value %g is not finite or out of range", p->doubles[i]);
+    for (i = 0; p->type == MT_PARAM_BOOL && i < n; ++i)
         if (p->ints[i] != 0 && p->ints[i] != 1)
             return mt_error_param(err, MT_ERR_INVALID, p->name, "bool values are 0 or 1");
-    for (i = 0; is_string_type(p->type) && i < nvals; ++i)
+    for (i = 0; is_string_type(p->type) && i < n; ++i)
         if (!p->strings[i]) return mt_error_param(err, MT_ERR_INVALID, p->name, "NULL string");
     return MT_OK;
 }
@@ -294,19 +332,20 @@ static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type w
                        p->type_name, name, type_desc(want));
         return fail(p, MT_ERR_INVALID, err);
     }
-    if (single && p->count != 1) {
+    if (single && p->nvalues != type_width(p->type)) {
+        int n = p->nvalues / type_width(p->type); /* elements */
         if (!strcmp(p->type_name, "blackbody")) /* read as pairs, stored as rgb */
             mt_error_param(err, MT_ERR_INVALID, name,
-                           "expected one blackbody (a temperature and a scale), found %d", p->count);
+                           "expected one blackbody (a temperature and a scale), found %d", n);
         else if (!strcmp(p->type_name, "spectrum")) /* pairs or a file name, stored as rgb */
-            mt_error_param(err, MT_ERR_INVALID, name, "expected one spectrum, found %d", p->count);
+            mt_error_param(err, MT_ERR_INVALID, name, "expected one spectrum, found %d", n);
         else if (type_width(p->type) == 3)
             mt_error_param(err, MT_ERR_INVALID, name,
                            "expected one %s (3 values), found %d values", p->type_name,
-                           p->count * 3);
+                           p->nvalues);
         else
             mt_error_param(err, MT_ERR_INVALID, name, "expected one %s value, found %d",
-                           p->type_name, p->count);
+                           p->type_name, p->nvalues);
         return fail(p, MT_ERR_INVALID, err);
     }
     *found = p;
@@ -319,7 +358,7 @@ mt_status mt_params_float(const mt_paramset *ps, const char *name, mt_real def, 
     mt_error_clear(err);
     const mt_param *p;
     mt_status st = lookup(ps, name, MT_PARAM_FLOAT, 1, &p, err);
-    *out = p ? (mt_real)p->reals[0] : def;
+    *out = p ? (mt_real)p->doubles[0] : def;
     return st;
 }
 
@@ -402,7 +441,7 @@ static mt_status one_vec(const mt_paramset *ps, const char *name, mt_param_type 
 {
     const mt_param *p;
     mt_status st = lookup(ps, name, t, 1, &p, err);
-    *out = p ? mt_v3((mt_real)p->reals[0], (mt_real)p->reals[1], (mt_real)p->reals[2]) : def;
+    *out = p ? mt_v3((mt_real)p->doubles[0], (mt_real)p->doubles[1], (mt_real)p->doubles[2]) : def;
     return st;
 }
 
@@ -433,7 +472,7 @@ mt_status mt_params_rgb(const mt_paramset *ps, const char *name, mt_rgb def, mt_
     mt_error_clear(err);
     const mt_param *p;
     mt_status st = lookup(ps, name, MT_PARAM_SPECTRUM, 1, &p, err);
-    *out = p ? mt_rgb_make((mt_real)p->reals[0], (mt_real)p->reals[1], (mt_real)p->reals[2]) : def;
+    *out = p ? mt_rgb_make((mt_real)p->doubles[0], (mt_real)p->doubles[1], (mt_real)p->doubles[2]) : def;
     return st;
 }
 
@@ -442,8 +481,8 @@ static mt_status array_of(const mt_paramset *ps, const char *name, mt_param_type
 {
     const mt_param *p;
     mt_status st = lookup(ps, name, t, 0, &p, err);
-    *values = p ? p->reals : NULL;
-    *count = p ? p->count : 0;
+    *values = p ? p->doubles : NULL;
+    *count = p ? p->nvalues / type_width(t) : 0;
     return st;
 }
 
@@ -482,25 +521,35 @@ mt_status mt_params_ints(const mt_paramset *ps, const char *name, const int **va
     const mt_param *p;
     mt_status st = lookup(ps, name, MT_PARAM_INTEGER, 0, &p, err);
     *values = p ? p->ints : NULL;
-    *count = p ? p->count : 0;
+    *count = p ? p->nvalues : 0;
     return st;
+}
+
+/* pbrt-v2 ParamSet::ReportUnused goes through its per-type lists in this
+ * order; within a type, in the order the parameters were given. */
+static const mt_param_type report_order[] = {MT_PARAM_INTEGER, MT_PARAM_BOOL,     MT_PARAM_FLOAT,
+                                             MT_PARAM_POINT,   MT_PARAM_VECTOR,   MT_PARAM_NORMAL,
+                                             MT_PARAM_SPECTRUM, MT_PARAM_STRING, MT_PARAM_TEXTURE};
+#define N_REPORT (int)(sizeof report_order / sizeof report_order[0])
+
+const mt_param *mt__paramset_first_unused(const mt_paramset *ps)
+{
+    int k, i;
+    for (k = 0; ps && k < N_REPORT; ++k)
+        for (i = 0; i < ps->n; ++i)
+            if (!ps->e[i].used && ps->e[i].p.type == report_order[k]) return &ps->e[i].p;
+    return NULL;
 }
 
 void mt_paramset_report_unused(const mt_paramset *ps, mt_warning_fn warn, void *ctx)
 {
-    /* pbrt-v2 ParamSet::ReportUnused goes through its per-type lists in this
-     * order; within a type, in the order the parameters were given. */
-    static const mt_param_type order[] = {MT_PARAM_INTEGER, MT_PARAM_BOOL,    MT_PARAM_FLOAT,
-                                          MT_PARAM_POINT,   MT_PARAM_VECTOR,  MT_PARAM_NORMAL,
-                                          MT_PARAM_SPECTRUM, MT_PARAM_STRING, MT_PARAM_TEXTURE};
     char msg[320];
-    size_t k;
-    int i;
+    int k, i;
     if (!ps || !warn) return;
-    for (k = 0; k < sizeof order / sizeof order[0]; ++k)
+    for (k = 0; k < N_REPORT; ++k)
         for (i = 0; i < ps->n; ++i) {
             const entry *e = &ps->e[i];
-            if (e->used || e->p.type != order[k]) continue;
+            if (e->used || e->p.type != report_order[k]) continue;
             snprintf(msg, sizeof msg, "Parameter \"%s\" not used", e->p.name);
             warn(ctx, e->p.file, e->p.line, msg);
         }

@@ -13,6 +13,7 @@
 #define MT_TEXTURES_TEX_H
 
 #include "materia/texture.h"
+#include "textures/texparams.h"
 #include "textures/mapping.h"
 
 typedef struct mt_texture_ops {

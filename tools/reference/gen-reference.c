@@ -83,17 +83,7 @@ static void create(const char *cls, int is_material, int is_float, const char *n
     mt_error err;
     if (!ps || !tt) exit(1);
     if (name) {
-        mt_param prm;
-        char full[64];
-        const char *strs[1];
-        memset(&prm, 0, sizeof prm);
-        snprintf(full, sizeof full, "%s", name);
-        strs[0] = value;
-        prm.name = full;
-        prm.type = MT_PARAM_STRING;
-        prm.type_name = "string";
-        prm.count = 1;
-        prm.strings = strs;
+        mt_param prm = mt_param_string(name, value);
         if (mt_paramset_add(ps, &prm, &err) != MT_OK) exit(1);
     }
     tp.geom = NULL;
