@@ -31,6 +31,7 @@ mt_status mt_merl_tabulate(const mt_bsdf *b, mt_merl_at at, double *values, mt_e
     double off = at == MT_MERL_AT_CENTRE ? 0.5 : 0;
     int ith, itd, ipd, c;
     mt_error_clear(err);
+    if (!b || !values) return mt_error_set(err, MT_ERR_INVALID, "mt_merl_tabulate: no %s", b ? "values" : "BSDF");
     for (ith = 0; ith < MT_MERL_THETA_H; ++ith)
         for (itd = 0; itd < MT_MERL_THETA_D; ++itd)
             for (ipd = 0; ipd < MT_MERL_PHI_D; ++ipd) {
