@@ -596,6 +596,12 @@ CASE(mt_sheet_make)
     if (mt_sheet_make(&e, 1, NULL, &out, ok) == MT_OK) mt_image_destroy(&out);
     mt_sheet_make(&e, 1, NULL, NULL, bad);
 }
+CASE(mt_mode_parse)
+{
+    mt_mode m;
+    mt_mode_parse("corrected", &m, ok);
+    mt_mode_parse("fixed", &m, bad);
+}
 CASE(mt_transform_from_matrix)
 {
     double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -640,7 +646,8 @@ static const contract_case cases[] = {
     ENTRY(mt_imgcmp_pixel_errors), ENTRY(mt_imgcmp_reldiff_blocks), ENTRY(mt_imgcmp_ztest),
     ENTRY(mt_imgacc_create), ENTRY(mt_imgacc_add_image), ENTRY(mt_imgacc_finish), ENTRY(mt_imgcmp_heatmap),
     ENTRY(mt_merl_tabulate), ENTRY(mt_merl_write), ENTRY(mt_merl_write_statements), ENTRY(mt_query_create),
-    ENTRY(mt_query_bsdf), ENTRY(mt_sheet_make), ENTRY(mt_transform_from_matrix), ENTRY(mt_look_at),
+    ENTRY(mt_query_bsdf), ENTRY(mt_sheet_make), ENTRY(mt_mode_parse), ENTRY(mt_transform_from_matrix),
+    ENTRY(mt_look_at),
 };
 #define NCASES (int)(sizeof cases / sizeof cases[0])
 

@@ -155,7 +155,7 @@ int main(int argc, char **argv)
             seed = (uint64_t)v;
             ++i;
         } else if (!strcmp(a, "--mode")) {
-            if (mt_mode_parse(val, &o.mode) != 0) return bad_usage("--mode is pbrt-v2 or corrected, not ", val);
+            if (mt_mode_parse(val, &o.mode, NULL) != MT_OK) return bad_usage("--mode is pbrt-v2 or corrected, not ", val);
             ++i;
         } else if (a[0] == '-') {
             return bad_usage("unknown option ", a);

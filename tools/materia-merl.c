@@ -103,7 +103,7 @@ int main(int argc, char **argv)
                 return 1;
             }
         } else if (!strcmp(argv[i], "--mode") && i + 1 < argc) {
-            if (mt_mode_parse(argv[++i], &opt.mode) != 0) {
+            if (mt_mode_parse(argv[++i], &opt.mode, NULL) != MT_OK) {
                 fprintf(stderr, "materia-merl: unknown mode \"%s\" (pbrt-v2 or corrected)\n", argv[i]);
                 free(text);
                 return 2;

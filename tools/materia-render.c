@@ -122,7 +122,7 @@ int main(int argc, char **argv)
             if (!parse_long(val, 0, 0x7fffffffffffffffLL, &v)) return bad_option(a, val);
             o.seed = (uint64_t)v, ++i;
         } else if (strcmp(a, "--mode") == 0) {
-            if (!val || mt_mode_parse(val, &o.mode) != 0) return bad_option(a, val);
+            if (!val || mt_mode_parse(val, &o.mode, NULL) != MT_OK) return bad_option(a, val);
             ++i;
         } else if (strcmp(a, "--quiet") == 0) {
             quiet = 1;

@@ -6,6 +6,9 @@
  * dpdu' = dpdu + (d(u+du) - d) / du * n + d * dndu (likewise v), the shading
  * normal is normalize(dpdu' x dpdv'), negated when the shape's orientation is
  * flipped (dg->flip), and turned to the geometric normal's side.
+ *
+ * Thread safety: a function of its arguments; the displacement texture is
+ * read-only.
  */
 #ifndef MATERIA_BUMP_H
 #define MATERIA_BUMP_H

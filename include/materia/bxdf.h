@@ -7,8 +7,17 @@
  * flags, exactly pbrt-v2's BxDFType bits.
  *
  * Each kind has pbrt-v2's name, mathematics, flags and sampling mappings:
- * the same (u1, u2) give the same direction as pbrt-v2. Creators return NULL
- * and fill err when memory is exhausted or a parameter is NaN or infinite.
+ * the same (u1, u2) give the same direction as pbrt-v2. Creators allocate the
+ * BxDF in the arena they are given (it lives until the arena is reset or
+ * destroyed, and is never freed alone) and return NULL with err filled when
+ * the arena is exhausted (MT_ERR_NOMEM) or a parameter is NaN or infinite
+ * (MT_ERR_INVALID).
+ *
+ * Thread safety: creators write only to the arena they are given (one
+ * thread at a time per arena); a BxDF is read-only once created, and f,
+ * sample_f, pdf and the rho functions may be called on one BxDF from any
+ * number of threads at once. The Fresnel and distribution functions are
+ * functions of their arguments.
  */
 #ifndef MATERIA_BXDF_H
 #define MATERIA_BXDF_H
@@ -70,6 +79,9 @@ typedef struct mt_fresnel {
     mt_real eta_i, eta_t; /* dielectric: index outside (cos > 0) and inside */
 } mt_fresnel;
 
+/* The three kinds, by value: a conductor of index eta and absorption k, a
+ * dielectric between eta_i (outside) and eta_t (inside), and no Fresnel
+ * factor (1 everywhere). */
 MT_API mt_fresnel mt_fresnel_conductor(mt_rgb eta, mt_rgb k);
 MT_API mt_fresnel mt_fresnel_dielectric(mt_real eta_i, mt_real eta_t);
 MT_API mt_fresnel mt_fresnel_noop(void);
@@ -96,6 +108,7 @@ typedef struct mt_distribution {
     mt_real ex, ey;   /* Anisotropic */
 } mt_distribution;
 
+/* Blinn with one exponent, Anisotropic with one along x and one along y. */
 MT_API mt_distribution mt_blinn(mt_real exponent);
 MT_API mt_distribution mt_anisotropic(mt_real ex, mt_real ey);
 /* D(wh): microfacet normal density, with integral of D cos over the hemisphere 1. */
@@ -136,6 +149,7 @@ MT_API mt_bxdf *mt_brdf_to_btdf_create(mt_arena *a, mt_mode mode, mt_bxdf *brdf,
 /* ---- evaluation ------------------------------------------------------------
  * Directions that are NaN, infinite or zero give black and pdf 0; directions
  * of other lengths are normalized first. */
+/* f(wo, wi) in the local frame. */
 MT_API mt_rgb mt_bxdf_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi);
 /* Samples *wi for wo from (u1, u2) in [0,1)^2; returns f(wo, *wi) and sets
  * *pdf (0 when no direction could be sampled). Every kind keeps this
@@ -143,12 +157,16 @@ MT_API mt_rgb mt_bxdf_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi);
  * transmission): the BSDF relies on it. */
 MT_API mt_rgb mt_bxdf_sample_f(const mt_bxdf *b, mt_vec3 wo, mt_real u1, mt_real u2,
                                mt_vec3 *wi, mt_real *pdf);
+/* The density per solid angle with which sample_f gives wi for wo. */
 MT_API mt_real mt_bxdf_pdf(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi);
 /* pbrt-v2's Monte Carlo reflectances: hemispherical-directional from n 2D
- * samples, hemispherical-hemispherical from two arrays of n 2D samples. */
+ * samples (samples holds 2 n values in [0, 1)), hemispherical-hemispherical
+ * from two arrays of n 2D samples. */
 MT_API mt_rgb mt_bxdf_rho_hd(const mt_bxdf *b, mt_vec3 wo, int n, const mt_real *samples);
 MT_API mt_rgb mt_bxdf_rho_hh(const mt_bxdf *b, int n, const mt_real *s1, const mt_real *s2);
 
+/* The BxDF's MT_BSDF_* type bits, its kind's name ("lambertian", ...) as a
+ * static string, and the mode it was created with. */
 MT_API unsigned mt_bxdf_type(const mt_bxdf *b);
 MT_API const char *mt_bxdf_name(const mt_bxdf *b);
 MT_API mt_mode mt_bxdf_mode(const mt_bxdf *b);
@@ -158,8 +176,12 @@ static inline int mt_type_matches(unsigned type, unsigned flags) { return (type 
 /* ---- extension interface ----------------------------------------------------
  * A kind of BxDF is an operations table. A new kind embeds mt_bxdf as the first
  * member of its struct, points ops at its table, and is allocated by
- * mt_bxdf_alloc. The default_* functions are pbrt-v2's BxDF base-class
- * behaviour (cosine sampling and pdf, Monte Carlo rho). */
+ * mt_bxdf_alloc. Every function of the table is required (point sample_f,
+ * pdf and the rho ones at the default_* functions below for pbrt-v2's BxDF
+ * base-class behaviour: cosine sampling and pdf, Monte Carlo rho); each must
+ * be safe to call from any number of threads at once on one BxDF, return
+ * finite values for finite input and keep mt_bxdf_sample_f's contract. ops
+ * and its name must outlive the BxDF (a static table). */
 typedef struct mt_bxdf_ops {
     const char *name;
     mt_rgb (*f)(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi);
@@ -176,8 +198,9 @@ struct mt_bxdf {
     mt_mode mode;
 };
 
-/* size bytes from the arena, with the base initialized; NULL (err filled) when
- * the arena is exhausted. */
+/* size bytes (at least sizeof(mt_bxdf)) from the arena, with the base
+ * initialized and the rest uninitialized. NULL (err filled) when the arena is
+ * exhausted. */
 MT_API void *mt_bxdf_alloc(mt_arena *a, size_t size, const mt_bxdf_ops *ops, unsigned type,
                            mt_mode mode, mt_error *err);
 MT_API mt_rgb mt_bxdf_default_sample_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 *wi, mt_real u1,

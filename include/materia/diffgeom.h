@@ -5,6 +5,9 @@
  * bump mapping read. n is the (unit) normal, dpdu/dpdv/dndu/dndv the partial
  * derivatives of position and normal, and the screen-space differentials
  * (dpdx, dpdy, dudx, ...) are zero when the caller has no ray differentials.
+ *
+ * Thread safety: a value type; mt_diffgeom_default may be called from any
+ * thread.
  */
 #ifndef MATERIA_DIFFGEOM_H
 #define MATERIA_DIFFGEOM_H

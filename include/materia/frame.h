@@ -3,6 +3,8 @@
  *
  * A frame (s, t, n) maps world directions to the local coordinates in which
  * every BxDF is written: the normal is +z (pbrt-v2 BSDF::WorldToLocal).
+ *
+ * Thread safety: functions of their arguments alone.
  */
 #ifndef MATERIA_FRAME_H
 #define MATERIA_FRAME_H

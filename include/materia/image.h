@@ -15,6 +15,9 @@
  * Writing goes to a temporary file in the same directory that is renamed
  * into place, so an error never leaves a partial file (and an existing file
  * survives a failed overwrite).
+ *
+ * Thread safety: every function may be called from any thread at once; an
+ * mt_image is plain data that its owner shares or not.
  */
 #ifndef MATERIA_IMAGE_H
 #define MATERIA_IMAGE_H
@@ -26,20 +29,28 @@
 extern "C" {
 #endif
 
+/* An image is a value the caller holds; the functions that fill one
+ * (mt_image_create, mt_image_read, mt_scene_render, ...) allocate data, which
+ * mt_image_destroy frees. A function that fails leaves *img empty (zero
+ * size, data NULL), which mt_image_destroy accepts, as it accepts NULL. */
 typedef struct mt_image {
     int width, height;
     int channels; /* 1 (Y), 3 (RGB) or 4 (RGBA) */
-    float *data;  /* width * height * channels values, malloc'ed */
+    float *data;  /* width * height * channels values, row 0 at the top */
 } mt_image;
 
-/* Allocates a zeroed image; MT_ERR_NOMEM or MT_ERR_INVALID (bad size). */
+/* Fills *img with a zeroed image; MT_ERR_INVALID for a size out of range
+ * (sides 1 to 2^24, channels 1, 3 or 4, at most 2^29 values), MT_ERR_NOMEM. */
 MT_API mt_status mt_image_create(mt_image *img, int width, int height, int channels,
-                                mt_error *err);
+                                 mt_error *err);
+/* Frees img's data and empties it. */
 MT_API void mt_image_destroy(mt_image *img);
 
-/* Reads .exr, .png or .pfm (by extension, case-insensitive) as described
- * above: the file's own values (mt_image_read_mode with every fix). Tools
- * and comparisons of images use this. */
+/* Fills *img from a .exr, .png or .pfm file (by extension, case-insensitive)
+ * as described above: the file's own values (mt_image_read_mode with every
+ * fix). Tools and comparisons of images use this. MT_ERR_IO (a file that
+ * cannot be opened), MT_ERR_FORMAT (a malformed one), MT_ERR_UNSUPPORTED
+ * (another extension, deep EXR), MT_ERR_NOMEM, each naming the file. */
 MT_API mt_status mt_image_read(const char *path, mt_image *img, mt_error *err);
 
 /* The mode bits that change how a file is decoded; the reader ignores the
@@ -68,9 +79,11 @@ typedef struct mt_image_attr {
 } mt_image_attr;
 
 /* Writes by extension: EXR as float RGB(A) -- Y for a one-channel image --
- * with ZIP compression and the string attributes, PNG as 8-bit sRGB (values
- * clamped to [0, 1] after the transfer function; alpha linear), PFM as
- * little-endian float RGB (alpha dropped) or grayscale. */
+ * with ZIP compression and the nattrs string attributes (attrs may be NULL
+ * when nattrs is 0), PNG as 8-bit sRGB (values clamped to [0, 1] after the
+ * transfer function; alpha linear), PFM as little-endian float RGB (alpha
+ * dropped) or grayscale. Through a temporary file renamed into place;
+ * MT_ERR_IO or MT_ERR_UNSUPPORTED naming the file. */
 MT_API mt_status mt_image_write(const char *path, const mt_image *img, const mt_image_attr *attrs,
                                 int nattrs, mt_error *err);
 

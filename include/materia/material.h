@@ -1,13 +1,27 @@
 /*
  * materia/material.h -- pbrt-v2's materials.
  *
- * A material is a reference-counted, read-only handle created from a pbrt-v2
- * parameter list by name (matte, plastic, glass, mirror, metal, shinymetal,
- * substrate, translucent, uber, mix, measured, subsurface, kdsubsurface), with
- * pbrt-v2's parameter names and defaults. At a shading point it builds a BSDF
- * in the caller's arena (bump mapping first when "bumpmap" is given), and the
- * two subsurface materials also give BSSRDF coefficients. Materials are safe
- * to share between threads; each thread passes its own arena.
+ * A material is made from a pbrt-v2 parameter list by type name (matte,
+ * plastic, glass, mirror, metal, shinymetal, substrate, translucent, uber,
+ * mix, measured, subsurface, kdsubsurface), with pbrt-v2's parameter names
+ * and defaults (docs/REFERENCE.md lists them, with their ranges). At a
+ * shading point it builds a BSDF in the caller's arena (bump mapping first
+ * when "bumpmap" is given), and the two subsurface materials also give BSSRDF
+ * coefficients.
+ *
+ * The short ways: mt_material_from_text (pbrt-v2 statements) and
+ * mt_material_from_params (typed parameters), below. mt_material_from_state
+ * makes the material a graphics state holds; mt_material_create is the
+ * low-level constructor they are built on.
+ *
+ * Lifetime: every function that returns a material returns a new reference,
+ * which mt_material_destroy ends; mt_material_retain gives another. A
+ * material holds references to its textures and measured data: they live as
+ * long as it does.
+ *
+ * Thread safety: a material is read-only once created: any number of
+ * threads may build BSDFs from it at once, each in its own arena, and
+ * retain and destroy it (atomic reference counts).
  */
 #ifndef MATERIA_MATERIAL_H
 #define MATERIA_MATERIAL_H
@@ -28,36 +42,49 @@ typedef struct mt_bssrdf {
     mt_real eta;
 } mt_bssrdf;
 
-/* Looks up a named material (MakeNamedMaterial) for the mix material; NULL
- * when there is none. Returns a borrowed pointer. A lookup that builds the
- * material and fails (out of memory) may record its error in the mt_error
- * given to the creator: the mix creator then reports that error, not an
- * undefined name. */
+/* For mt_material_create: looks up a named material (MakeNamedMaterial) for
+ * the mix material; NULL when there is none. Returns a borrowed pointer,
+ * valid until the creator returns (the mix retains what it keeps). A lookup
+ * that builds the material and fails (out of memory) may record its error in
+ * the mt_error given to the creator: the mix creator then reports that
+ * error, not an undefined name. */
 typedef const mt_material *(*mt_material_lookup_fn)(void *ctx, const char *name);
 
 typedef struct mt_material_ctx {
     mt_material_lookup_fn lookup; /* may be NULL: then "mix" cannot be created */
     void *lookup_ctx;
-    mt_warning_fn warn;           /* warnings (pbrt-v2's); may be NULL */
-    void *warn_ctx;
 } mt_material_ctx;
 
-/* Creates the material of pbrt-v2 type `type` from tp (TextureParams:
- * geometry parameters first, then the material's), declared under the
- * transform mtl2world. NULL with err naming the parameter for an unknown
- * type, a bad parameter or a file that cannot be read. */
+/* The low-level constructor: the material of pbrt-v2 type `type` from tp
+ * (pbrt-v2's TextureParams: the geometry's parameters first, then the
+ * material's; named textures from tp->textures, which may be NULL; tp->mode),
+ * declared under the transform mtl2world (NULL: the identity). ctx may be
+ * NULL (no named materials). The lists are read, not kept, and their
+ * parameters marked used: reporting those left unused is the caller's
+ * (mt_paramset_report_unused); mt_material_from_text and
+ * mt_material_from_params do it. A new reference, or NULL with err naming
+ * the parameter: an unknown type (MT_ERR_NOT_FOUND), a parameter of the
+ * wrong type or out of its range, an undefined texture, a file that cannot
+ * be read. */
 MT_API mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,
                                        const mt_texparams *tp, const mt_material_ctx *ctx,
                                        mt_error *err);
 
+/* Another reference to m (returned; m may be NULL), and the end of one. */
 MT_API mt_material *mt_material_retain(mt_material *m);
 MT_API void mt_material_destroy(mt_material *m);
+/* The type name ("plastic", a static string) and the mode it was made in. */
 MT_API const char *mt_material_type(const mt_material *m);
 MT_API mt_mode mt_material_mode(const mt_material *m);
 
-/* The BSDF at a shading point: dg_geom carries the geometric normal (n) and
- * dg_shading the shading frame, as pbrt-v2's Material::GetBSDF receives them.
- * NULL with err filled when the arena is exhausted or the geometry invalid. */
+/* pbrt-v2's Material::GetBSDF: the BSDF at a shading point, in arena (see
+ * bsdf.h: valid until the arena is reset). dg_geom carries the geometric
+ * normal (its n) and dg_shading the shading frame, as pbrt-v2 passes them;
+ * they may be the same. Textures read dg_shading's p, u, v and
+ * differentials. NULL with err filled when the arena is exhausted, the
+ * geometry is not finite or a texture gives a value the BxDF rejects.
+ * err may be NULL (the renderer's inner loop); resetting it costs six
+ * stores. */
 MT_API mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom,
                                      const mt_diffgeom *dg_shading, mt_arena *arena,
                                      mt_error *err);
@@ -86,13 +113,16 @@ MT_API void mt_subsurface_from_diffuse(mt_rgb kd, mt_real mfp, mt_real eta, mt_r
  * NamedMaterial selected (created from its MakeNamedMaterial parameters) or
  * the last Material statement's, with shape_params (may be NULL) read first
  * as pbrt-v2's GraphicsState::CreateMaterial does; a mix finds its named
- * materials in the state. NULL with err filled on any error. */
+ * materials in the state. Unused parameters are not reported (the renderer
+ * and the query tool report them; mt_material_from_text does). A new
+ * reference, or NULL with err filled on any error. */
 struct mt_state;
 MT_API mt_material *mt_material_from_state(const struct mt_state *s, const mt_paramset *shape_params,
                                            mt_error *err);
 
 /* The material MakeNamedMaterial "name" defined (pbrt-v2 creates it at that
- * statement: errors in its parameters show there). NULL with err filled. */
+ * statement: errors in its parameters show there). A new reference, or NULL
+ * with err filled (MT_ERR_NOT_FOUND when no such name is in scope). */
 MT_API mt_material *mt_material_named_from_state(const struct mt_state *s, const char *name, mt_error *err);
 
 /* A material from pbrt-v2 statements given as text, in one call:
@@ -124,9 +154,9 @@ MT_API mt_material *mt_material_named_from_state(const struct mt_state *s, const
  * other than those above, an unknown type (MT_ERR_NOT_FOUND), a parameter
  * out of range or of the wrong type, an undefined texture or named
  * material, an unreadable file. The statements before a failing one stay
- * applied to the caller's state. Thread safety: state is modified, so one
- * state is used by one thread at a time; with a NULL state any number of
- * threads may call this at once. */
+ * applied to the caller's state. Thread safety: with a NULL state any
+ * number of threads may call this at once; a state is used by one thread at
+ * a time (state.h). */
 MT_API mt_material *mt_material_from_text(const char *text, struct mt_state *state, mt_error *err);
 
 /* A material of pbrt-v2 type `type` ("plastic", ...) from a list of typed
@@ -142,12 +172,13 @@ MT_API mt_material *mt_material_from_text(const char *text, struct mt_state *sta
  * materials, mode, current transform and warning callback are used; the
  * state is not modified. Unused parameters and errors as for
  * mt_material_from_text. Returns a new reference, or NULL with err filled.
- * Thread safety: any number of threads may call this at once, sharing a
- * state only when no thread modifies it. */
+ * Thread safety: with a NULL state any number of threads may call this at
+ * once; a state is used by one thread at a time (state.h). */
 MT_API mt_material *mt_material_from_params(const char *type, const mt_param *params, int nparams,
                                             const struct mt_state *state, mt_error *err);
 
-/* The names of the 13 material types; *count receives their number. */
+/* The names of the 13 material types (a static array of static strings);
+ * *count (may be NULL) receives their number. */
 MT_API const char *const *mt_material_types(int *count);
 
 #ifdef __cplusplus

@@ -27,6 +27,10 @@
  *
  * A BxDF made from measured data points into it: keep the data (or the
  * material holding it) alive while the BxDF is used.
+ *
+ * Thread safety: measured data is read-only once created: any number of
+ * threads may use it and retain and destroy it; the file cache is thread-
+ * safe (two threads loading one file read it once).
  */
 #ifndef MATERIA_MEASURED_H
 #define MATERIA_MEASURED_H
@@ -59,23 +63,25 @@ typedef enum mt_measured_kind {
 MT_API mt_vec3 mt_brdf_remap(mt_vec3 wo, mt_vec3 wi);
 
 /* Irregular data from n direction pairs (unit, local frame) and their RGB
- * values; the pairs are remapped with mt_brdf_remap. NULL with err filled
- * when n < 1, an input is not finite, or memory is exhausted. */
+ * values (copied); the pairs are remapped with mt_brdf_remap. A new
+ * reference, or NULL with err filled when n < 1, an input is not finite, or
+ * memory is exhausted. */
 MT_API mt_measured *mt_measured_irregular_create(const mt_vec3 *wo, const mt_vec3 *wi,
                                                  const mt_rgb *values, int n, mt_error *err);
 
 /* A half-angle table at pbrt-v2's resolution from MT_MERL_SAMPLES RGB
  * triples in pbrt-v2's memory order (rgb[3 * index + channel], index =
  * phi_d + 180 (theta_d + 90 theta_h)), already scaled (the file's
- * 1/1500, 1.15/1500, 1.66/1500 applied). Values must be finite and not
- * negative. NULL with err filled otherwise. */
+ * 1/1500, 1.15/1500, 1.66/1500 applied), copied. Values must be finite
+ * and not negative. A new reference, or NULL with err filled. */
 MT_API mt_measured *mt_measured_halfangle_create(const mt_real *rgb, mt_error *err);
 
 /* Reads a measured BRDF file as pbrt-v2's MeasuredMaterial does: a name
  * ending in ".brdf" or ".BRDF" is the irregular text format, any other
  * suffix the MERL binary format; a name without a suffix is an error. Each
  * path is read once per process: later calls with the same path return the
- * cached data (a new reference). Thread-safe. NULL with err naming the file
+ * cached data (a new reference: each mt_measured_load is ended by an
+ * mt_measured_destroy). Thread-safe. NULL with err naming the file
  * (and the line, for the text format) and the problem: missing file,
  * truncated or over-long data (with the counts expected and found),
  * dimensions, numbers that are malformed, not finite or out of range. */
@@ -88,22 +94,26 @@ MT_API void mt_measured_cache_clear(void);
 /* The number of files in the cache. */
 MT_API int mt_measured_cache_size(void);
 
+/* Another reference to m (returned; m may be NULL), and the end of one. */
 MT_API mt_measured *mt_measured_retain(mt_measured *m);
 MT_API void mt_measured_destroy(mt_measured *m);
+/* Which of the two kinds the data is. */
 MT_API mt_measured_kind mt_measured_kind_of(const mt_measured *m);
 /* The number of samples: direction pairs, or table entries. */
 MT_API int mt_measured_count(const mt_measured *m);
 /* The i-th irregular sample: its remapped point and RGB value (0 <= i <
  * count); returns 0 for a half-angle table or i out of range. */
 MT_API int mt_measured_sample(const mt_measured *m, int i, mt_vec3 *point, mt_rgb *value);
-/* The half-angle table (MT_MERL_SAMPLES RGB triples), NULL for irregular
- * data. */
+/* The half-angle table (MT_MERL_SAMPLES RGB triples), borrowed from m;
+ * NULL for irregular data. */
 MT_API const mt_real *mt_measured_table(const mt_measured *m);
 
-/* pbrt-v2's IrregIsotropicBRDF over irregular data. */
+/* pbrt-v2's IrregIsotropicBRDF over irregular data, in the arena (bxdf.h);
+ * the BxDF points into data, which must outlive it. MT_ERR_INVALID for data
+ * of the other kind. */
 MT_API mt_bxdf *mt_irregular_isotropic_brdf_create(mt_arena *a, mt_mode mode,
                                                    const mt_measured *data, mt_error *err);
-/* pbrt-v2's RegularHalfangleBRDF over a half-angle table. */
+/* pbrt-v2's RegularHalfangleBRDF over a half-angle table, likewise. */
 MT_API mt_bxdf *mt_regular_halfangle_brdf_create(mt_arena *a, mt_mode mode,
                                                  const mt_measured *data, mt_error *err);
 

@@ -21,6 +21,9 @@
  * filter over the ellipse's bounding square.
  *
  * A pyramid is read-only once created: any number of threads may look it up.
+ *
+ * Thread safety: a pyramid is read-only once created: any number of
+ * threads may look it up at once. The cache is thread-safe.
  */
 #ifndef MATERIA_MIPMAP_H
 #define MATERIA_MIPMAP_H
@@ -38,11 +41,16 @@ typedef enum mt_wrap { MT_WRAP_REPEAT, MT_WRAP_BLACK, MT_WRAP_CLAMP } mt_wrap;
 typedef struct mt_mipmap mt_mipmap;
 
 /* A pyramid over img's RGB (channels >= 3; alpha is ignored) or its single
- * channel. maxaniso must be positive when trilinear is 0 (EWA). */
+ * channel; img is copied (resampled) and may go away. maxaniso must be
+ * positive when trilinear is 0 (EWA). mt_mode's MT_FIX_TRILINEAR_WIDTH is
+ * the one bit it reads. NULL with err filled (MT_ERR_INVALID, MT_ERR_NOMEM);
+ * mt_mipmap_destroy frees it (never one from the cache). */
 MT_API mt_mipmap *mt_mipmap_create(const mt_image *img, int trilinear, mt_real maxaniso,
                                    mt_wrap wrap, mt_mode mode, mt_error *err);
 MT_API void mt_mipmap_destroy(mt_mipmap *m);
 
+/* The number of levels (level 0 the finest), a level's size, and the
+ * channels (1 or 3). */
 MT_API int mt_mipmap_levels(const mt_mipmap *m);
 MT_API int mt_mipmap_width(const mt_mipmap *m, int level);
 MT_API int mt_mipmap_height(const mt_mipmap *m, int level);

@@ -10,10 +10,14 @@
  * union of every MT_FIX_* bit. MT_OPT_* bits are options outside both modes.
  * The catalog (mt_errata) describes each bit; conformance/ERRATA.md gives the
  * measured effects.
+ *
+ * Thread safety: the catalog is static and read-only; every function may
+ * be called from any thread.
  */
 #ifndef MATERIA_MODE_H
 #define MATERIA_MODE_H
 
+#include "materia/error.h"
 #include "materia/real.h"
 
 #ifdef __cplusplus
@@ -90,14 +94,17 @@ typedef struct mt_erratum {
     const char *correction;  /* what corrected mode does */
 } mt_erratum;
 
-/* The catalog; *count receives the number of entries. */
+/* The catalog, a static array; *count (may be NULL) receives the number of
+ * entries. */
 MT_API const mt_erratum *mt_errata(int *count);
 
-/* "pbrt-v2" or "corrected" for the two modes, "custom" for other bit sets. */
+/* "pbrt-v2" or "corrected" for the two modes, "custom" for other bit sets
+ * (static strings; MT_OPT_* bits are ignored). */
 MT_API const char *mt_mode_name(mt_mode mode);
 
-/* Parses "pbrt-v2" or "corrected"; returns 0 on success, -1 otherwise. */
-MT_API int mt_mode_parse(const char *name, mt_mode *mode);
+/* Parses "pbrt-v2" or "corrected" into *mode: MT_OK, or MT_ERR_NOT_FOUND
+ * (*mode unchanged) for any other name. */
+MT_API mt_status mt_mode_parse(const char *name, mt_mode *mode, mt_error *err);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,10 @@
  * are those of pbrt-v2's InitParamSet (see docs/PARSER.md): float, integer
  * (integral values only), bool ("true"/"false"), string, point, vector,
  * normal, rgb, color, xyz, spectrum, blackbody, texture.
+ *
+ * Thread safety: a parameter list belongs to one thread at a time: even a
+ * lookup writes to it (it marks the parameter used). The mt_param helpers
+ * are inline functions of their arguments.
  */
 #ifndef MATERIA_PARAMS_H
 #define MATERIA_PARAMS_H
@@ -158,27 +162,42 @@ static inline mt_param mt_param_texture(const char *name, const char *texture_na
 
 typedef struct mt_paramset mt_paramset;
 
+/* A parameter list: the statements' (the parser makes them) or one of the
+ * caller's. Most programs need none: mt_material_from_params and
+ * mt_texture_from_params take an array of mt_param. An empty list, or NULL
+ * when out of memory; mt_paramset_destroy frees it and its copies. */
 MT_API mt_paramset *mt_paramset_create(void);
 MT_API void mt_paramset_destroy(mt_paramset *ps);
-/* A deep copy (the used marks included); NULL when memory is exhausted. */
+/* A deep copy (the used marks included); NULL when memory is exhausted.
+ * ps may be NULL (an empty list). */
 MT_API mt_paramset *mt_paramset_clone(const mt_paramset *ps);
 
-/* Adds a copy of p (its values must be finite and within float's range). A
- * later parameter with the same name replaces an earlier one, whatever their
- * types, and goes to the end of the list (pbrt-v2 erases only one of the
- * same type; a name declared with two types could only fail at lookup
- * here). Spectra are given as RGB: see the parser for the conversions. */
+/* Adds a copy of p (see mt_param: a name, a known type, values finite and
+ * within float's range, an integral integer, a bool of 0 or 1, a number of
+ * values that is a multiple of 3 for a point, vector, normal or RGB, no NULL
+ * array or string); MT_ERR_INVALID naming the parameter otherwise, and
+ * MT_ERR_NOMEM. A later parameter with the same name replaces an earlier
+ * one, whatever their types, and goes to the end of the list (pbrt-v2
+ * erases only one of the same type; a name declared with two types could
+ * only fail at lookup here). Spectra are given as RGB: the parser converts
+ * the other kinds. */
 MT_API mt_status mt_paramset_add(mt_paramset *ps, const mt_param *p, mt_error *err);
 
+/* The number of parameters (0 for NULL), and the i-th in the order given,
+ * borrowed (valid until the list changes or goes; NULL when out of range). */
 MT_API int mt_paramset_count(const mt_paramset *ps);
 MT_API const mt_param *mt_paramset_at(const mt_paramset *ps, int i);
-/* The parameter called name (any type), or NULL. Does not mark it used. */
+/* The parameter called name (any type), borrowed, or NULL. Does not mark it
+ * used. */
 MT_API const mt_param *mt_paramset_find(const mt_paramset *ps, const char *name);
 /* Marks name used (e.g. when a caller consumed it by other means). */
 MT_API void mt_paramset_mark_used(const mt_paramset *ps, const char *name);
 
 /* Typed lookups of single values: *out = the value when the parameter is
- * present, def otherwise. ps may be NULL (no parameters). */
+ * present, def otherwise, and the parameter marked used. ps may be NULL (no
+ * parameters). MT_ERR_INVALID, naming the parameter and where it was
+ * written, when it has another type or more than one value (*out = def). A
+ * string found is borrowed from the list. */
 MT_API mt_status mt_params_float(const mt_paramset *ps, const char *name, mt_real def,
                                  mt_real *out, mt_error *err);
 MT_API mt_status mt_params_int(const mt_paramset *ps, const char *name, int def, int *out,
@@ -220,13 +239,15 @@ MT_API mt_status mt_params_normals(const mt_paramset *ps, const char *name,
 MT_API mt_status mt_params_vectors(const mt_paramset *ps, const char *name,
                                    const double **values, int *nvectors, mt_error *err);
 
-/* Warnings are delivered to the caller (the library never prints). */
+/* Warnings are delivered to the caller (the library never prints): ctx as
+ * given with the callback, the file (may be NULL) and line (0 when unknown)
+ * the warning is about, and the message, valid during the call. */
 typedef void (*mt_warning_fn)(void *ctx, const char *file, int line, const char *message);
 
 /* Calls warn once per parameter that no lookup used: pbrt-v2's
  * "Parameter "x" not used", with the file and line of its declaration, in
  * pbrt-v2's order (integers, bools, floats, points, vectors, normals,
- * spectra, strings, textures). */
+ * spectra, strings, textures). ps or warn NULL: nothing. */
 MT_API void mt_paramset_report_unused(const mt_paramset *ps, mt_warning_fn warn, void *ctx);
 
 #ifdef __cplusplus

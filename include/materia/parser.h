@@ -14,6 +14,9 @@
  * name file, line and column and say what was expected. The parser never
  * crashes on any input. docs/PARSER.md lists what is accepted and where it
  * is stricter than pbrt-v2.
+ *
+ * Thread safety: the parse functions may run in any number of threads at
+ * once; each calls back on the thread that called it.
  */
 #ifndef MATERIA_PARSER_H
 #define MATERIA_PARSER_H
@@ -42,9 +45,12 @@ typedef struct mt_statement {
     int line, column;      /* where the directive starts */
 } mt_statement;
 
-/* Called once per statement. A non-OK return stops parsing and is returned
- * by the parse function (err should then say why; the parser adds the
- * statement's location when err has none). */
+/* Called once per statement, in order, on the thread that called the parse
+ * function; st and everything it points to are valid during the call only
+ * (copy what must stay, or retain the paramset by cloning it). err has been
+ * reset. A non-OK return stops parsing and is returned by the parse function
+ * (err should then say why: the parser adds the statement's location when
+ * err has none, and a message naming the directive when it has no message). */
 typedef mt_status (*mt_statement_fn)(void *ctx, const mt_statement *st, mt_error *err);
 
 typedef struct mt_parse_options {
@@ -53,13 +59,17 @@ typedef struct mt_parse_options {
     int max_include_depth; /* 0: 32 (pbrt-v2's limit); at most 1024 */
 } mt_parse_options;
 
-/* Parses the file at path. */
+/* Parses the file at path, calling fn for each statement. opt may be NULL
+ * (no warnings, the default include depth). MT_OK, the callback's status,
+ * or an error of the parser's: MT_ERR_IO (an unreadable file, named),
+ * MT_ERR_PARSE (malformed text, with line and column), MT_ERR_INVALID (a
+ * parameter's values), MT_ERR_LIMIT (includes nested too deep). */
 MT_API mt_status mt_parse_file(const char *path, const mt_parse_options *opt,
                                mt_statement_fn fn, void *ctx, mt_error *err);
 
-/* Parses text; name is used in messages (NULL: "<string>"), dir resolves
- * Include and file names (NULL: the current directory), first_line numbers
- * the text's first line. */
+/* As mt_parse_file for text: name is used in messages (NULL: "<string>"),
+ * dir resolves Include and file names (NULL: the current directory),
+ * first_line numbers the text's first line. */
 MT_API mt_status mt_parse_string(const char *text, const char *name, const char *dir,
                                  int first_line, const mt_parse_options *opt,
                                  mt_statement_fn fn, void *ctx, mt_error *err);

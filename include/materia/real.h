@@ -4,6 +4,10 @@
  * mt_real is float (the default, as in pbrt-v2) or double (PRECISION=double).
  * Every formula in materia is written once against mt_real and the mt_*
  * math wrappers below, so that the two builds differ only in precision.
+ * MT_REAL_NAME ("float" or "double") is what mt_precision() returns in a
+ * library built for these headers.
+ *
+ * Thread safety: inline functions of their arguments alone.
  */
 #ifndef MATERIA_REAL_H
 #define MATERIA_REAL_H

@@ -25,6 +25,11 @@
  * count and the seed -- not on the number of threads. Each camera sample's
  * random numbers are a function of (pixel, sample index, dimension, seed),
  * and the tiles' film contributions are added to the image in tile order.
+ *
+ * Thread safety: a loaded scene is read-only: any number of threads may
+ * render it at once (each call runs its own o->threads worker threads, and
+ * calls the progress callbacks on the thread that called it). Loading,
+ * writing and mt_render_file may run in any number of threads at once.
  */
 #ifndef MATERIA_RENDER_H
 #define MATERIA_RENDER_H
@@ -81,19 +86,27 @@ typedef struct mt_render_stats {
     long points;               /* dipolesubsurface: the irradiance points */
 } mt_render_stats;
 
+/* Fills *o with the defaults above (pbrt-v2 mode, the scene's samples per
+ * pixel, one thread per processor, seed 0, no callbacks). Every function
+ * below also takes o NULL for these defaults. */
 MT_API void mt_render_options_default(mt_render_options *o);
 
 /* Reads a pbrt-v2 scene file (Include resolved against the including file's
- * directory) and builds everything up to the BVH. NULL with err (file, line,
- * parameter) on any error. Only o->mode, o->warn and o->warn_ctx are used. */
+ * directory) and builds everything up to the BVH: a new scene
+ * (mt_scene_destroy), or NULL with err (file, line, parameter) on any
+ * error. Only o->mode, o->warn and o->warn_ctx are used; unused parameters
+ * go to o->warn, and are dropped when it is NULL. */
 MT_API mt_scene *mt_scene_load(const char *path, const mt_render_options *o, mt_error *err);
-/* The same from text (name for messages, dir for relative file names). */
+/* The same from text (name for messages, NULL: "<string>"; dir for relative
+ * file names, NULL: the current directory). */
 MT_API mt_scene *mt_scene_load_string(const char *text, const char *name, const char *dir,
                                       const mt_render_options *o, mt_error *err);
+/* Frees a scene and everything it holds (its materials and textures keep
+ * any references others hold). */
 MT_API void mt_scene_destroy(mt_scene *s);
 
 /* The Film's "filename" (pbrt-v2's default "pbrt.exr"), as written in the
- * scene: pbrt-v2 resolves it against the current directory. */
+ * scene (borrowed): pbrt-v2 resolves it against the current directory. */
 MT_API const char *mt_scene_filename(const mt_scene *s);
 /* The image's size: the film's crop window in pixels. */
 MT_API void mt_scene_image_size(const mt_scene *s, int *width, int *height);
@@ -105,7 +118,10 @@ MT_API int mt_scene_spp(const mt_scene *s);
  * value, per channel, from the per-pixel sample statistics (for a box filter
  * the sample variance divided by the sample count; in general the variance
  * of the filter-weighted mean). Low-discrepancy samples are not independent,
- * so the estimate is conservative. stats may be NULL. */
+ * so the estimate is conservative. stats may be NULL. The images are the
+ * caller's (mt_image_destroy); on failure they are empty. MT_ERR_INVALID
+ * for options out of range, MT_ERR_NOMEM, or the integrator's preprocess
+ * errors. */
 MT_API mt_status mt_scene_render(const mt_scene *s, const mt_render_options *o, mt_image *image,
                                  mt_image *variance, mt_render_stats *stats, mt_error *err);
 

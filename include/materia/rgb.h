@@ -4,6 +4,8 @@
  * pbrt-v2's default build represents every spectrum as linear RGB; y() uses
  * its luminance weights (spectrum.h YWeight), Clamp defaults to [0, inf),
  * IsBlack means every component is exactly zero.
+ *
+ * Thread safety: inline functions of their arguments alone.
  */
 #ifndef MATERIA_RGB_H
 #define MATERIA_RGB_H

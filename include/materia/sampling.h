@@ -2,6 +2,10 @@
  * materia/sampling.h -- Monte Carlo helpers with pbrt-v2's exact mappings
  * (montecarlo.h/.cpp, geometry.h), so that the same uniform numbers give the
  * same points and directions as pbrt-v2.
+ *
+ * Thread safety: functions of their arguments alone, except the stratified
+ * ones, which draw from the mt_rng they are given (one thread at a time
+ * per generator).
  */
 #ifndef MATERIA_SAMPLING_H
 #define MATERIA_SAMPLING_H
@@ -37,6 +41,7 @@ MT_API mt_vec3 mt_uniform_sample_cone_frame(mt_real u1, mt_real u2, mt_real cost
                                             mt_vec3 x, mt_vec3 y, mt_vec3 z);
 MT_API mt_real mt_uniform_cone_pdf(mt_real costhetamax);
 
+/* Barycentric (u, v) uniform over a triangle (pbrt-v2 UniformSampleTriangle). */
 MT_API void mt_uniform_sample_triangle(mt_real u1, mt_real u2, mt_real *u, mt_real *v);
 
 /* Spherical coordinates (pbrt-v2 geometry.h). */

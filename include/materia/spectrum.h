@@ -6,6 +6,9 @@
  * ybar, zbar and divided by the sum of ybar to give XYZ, and XYZ goes to RGB
  * with its XYZToRGB matrix. SPD files are the two-column wavelength/value
  * text format of pbrt-v2's spds/ directory.
+ *
+ * Thread safety: every function may be called from any thread (mt_spd_read
+ * writes only to what it allocates).
  */
 #ifndef MATERIA_SPECTRUM_H
 #define MATERIA_SPECTRUM_H
@@ -22,6 +25,7 @@ extern "C" {
  * not finite or beyond float's range. A repeated wavelength makes a step, as
  * in pbrt-v2. */
 MT_API mt_rgb mt_spectrum_from_sampled(const double *lambda, const double *values, int n);
+/* pbrt-v2's XYZToRGB and RGBToXYZ matrices. */
 MT_API mt_rgb mt_xyz_to_rgb(const double xyz[3]);
 MT_API void mt_rgb_to_xyz(mt_rgb rgb, double xyz[3]);
 /* pbrt-v2 ParamSet::AddBlackbodySpectrum: scale times the blackbody
@@ -31,8 +35,9 @@ MT_API void mt_rgb_to_xyz(mt_rgb rgb, double xyz[3]);
 MT_API mt_rgb mt_blackbody_rgb(double kelvin, double scale);
 
 /* Reads an SPD file: pairs of (wavelength nm, value); '#' starts a comment.
- * *lambda and *values are malloc'ed (free them with free()). Errors name the
- * file and line. */
+ * *lambda and *values (n values each) are allocated with malloc: the caller
+ * frees them with free(); on failure both are NULL and *n is 0. Errors
+ * (MT_ERR_IO, MT_ERR_PARSE, MT_ERR_NOMEM) name the file and line. */
 MT_API mt_status mt_spd_read(const char *path, double **lambda, double **values, int *n,
                              mt_error *err);
 

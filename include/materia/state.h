@@ -28,6 +28,13 @@
  * unused parameters through the warning callback; Material and
  * MakeNamedMaterial only record (mt_state_material, mt_state_named_material):
  * their parameters are checked when the material is made.
+ *
+ * Thread safety: a state belongs to one thread at a time -- also for the
+ * functions that take it const (mt_material_from_state, mt_material_from_params
+ * and the like read parameter lists, and a lookup marks a parameter used).
+ * What its getters return is borrowed and changes with it. Give each thread
+ * its own state, or share the objects made from one (materials and textures
+ * are read-only).
  */
 #ifndef MATERIA_STATE_H
 #define MATERIA_STATE_H
@@ -41,13 +48,29 @@ extern "C" {
 
 typedef struct mt_state mt_state;
 
+/* A new state: identity transforms, no named textures or materials, the
+ * current material "matte", textures and materials made in mode. NULL when
+ * out of memory. mt_state_destroy releases everything it holds (objects made
+ * from it keep their own references). */
 MT_API mt_state *mt_state_create(mt_mode mode);
 MT_API void mt_state_destroy(mt_state *s);
+/* The mode of what is made from now on (textures at their statement,
+ * materials when they are made). */
 MT_API void mt_state_set_mode(mt_state *s, mt_mode mode);
 MT_API mt_mode mt_state_mode(const mt_state *s);
-/* Where warnings (unused parameters, redefinitions) go; NULL drops them. */
+/* Where warnings go -- unused parameters, redefinitions, pbrt-v2's other
+ * warnings -- called on the thread that applies the statement with ctx, the
+ * statement's file (may be NULL) and line, and a message without a newline.
+ * warn NULL (the default): mt_state_apply and mt_state_apply_text drop
+ * redefinitions and the like, mt_state_apply drops unused parameters too,
+ * and the embedding entry points (mt_state_apply_text, mt_*_from_text,
+ * mt_*_from_params) make an unused parameter an error. */
 MT_API void mt_state_set_warning(mt_state *s, mt_warning_fn warn, void *ctx);
 
+/* Applies one parsed statement (see above): MT_OK and *handled = 1 for a
+ * statement of the graphics state, *handled = 0 for any other (the caller's;
+ * Camera, WorldBegin, WorldEnd, ObjectBegin and ObjectEnd change the state
+ * and still give 0). An error names the statement's file and line. */
 MT_API mt_status mt_state_apply(mt_state *s, const mt_statement *st, int *handled,
                                 mt_error *err);
 
@@ -68,12 +91,17 @@ MT_API mt_status mt_state_apply_text(mt_state *s, const char *text, mt_error *er
  * earlier binding of the name is released. */
 MT_API mt_status mt_state_set_texture(mt_state *s, const char *name, mt_texture *tex, mt_error *err);
 
-/* The current transform (pbrt-v2's curTransform[0], the start-time
+/* The getters below return what the state holds now, borrowed: valid until
+ * the state's next change (mt_state_apply, mt_state_apply_text,
+ * mt_state_set_texture) or its destruction.
+ *
+ * The current transform (pbrt-v2's curTransform[0], the start-time
  * transform that textures, materials and static shapes use). */
 MT_API const mt_transform *mt_state_transform(const mt_state *s);
 /* The end-time transform (curTransform[1]): the same as the start one unless
  * ActiveTransform limited a change to one of them. */
 MT_API const mt_transform *mt_state_transform_end(const mt_state *s);
+/* The named textures in scope. */
 MT_API const mt_texture_table *mt_state_textures(const mt_state *s);
 /* Attribute/transform/object stack depth (0 at the top level). */
 MT_API int mt_state_depth(const mt_state *s);

@@ -9,10 +9,22 @@
  * windy, marble -- float and spectrum variants where pbrt-v2 has both (it has
  * no float uv or marble).
  *
- * Textures are created from a statement's parameters by class name
- * (mt_texture_create), which reads them as pbrt-v2's TextureParams does: the
- * geometry's parameters first, then the material's, and "texture" parameters
- * from the table of named textures.
+ * The short ways: mt_texture_from_text (a Texture statement) and
+ * mt_texture_from_params (typed parameters), below; mt_texture_create is the
+ * low-level constructor, which reads parameters as pbrt-v2's TextureParams
+ * does: the geometry's first, then the material's, and "texture" parameters
+ * from a table of named textures.
+ *
+ * Lifetime: every function that returns a texture, except
+ * mt_texture_table_get, returns a new reference, which mt_texture_destroy
+ * ends; mt_texture_retain gives another. A texture holds references to the
+ * textures it is made of, and an image map to its pyramid in the cache.
+ *
+ * Thread safety: a texture is read-only once created: any number of
+ * threads may evaluate it at once, and retain and destroy it (atomic
+ * reference counts). A texture table belongs to one thread at a time while
+ * it changes; mt_texture_table_get may be called from any number of
+ * threads on a table that no thread changes.
  */
 #ifndef MATERIA_TEXTURE_H
 #define MATERIA_TEXTURE_H
@@ -31,50 +43,62 @@ typedef struct mt_texture mt_texture;
 typedef struct mt_texture_table mt_texture_table;
 struct mt_state; /* materia/state.h */
 
-/* Evaluation reads dg's p, u, v and screen-space differentials, allocates
- * nothing and may run in any number of threads at once; the result is finite
- * for finite input. A spectrum texture read as a float gives its luminance
- * (mt_rgb_y, what pbrt-v2's float image maps store); a float texture read as
- * RGB is gray. Reference counts are atomic; a texture holds references to
- * the textures it is made of. */
+/* The value at a shading point: evaluation reads dg's p, u, v and
+ * screen-space differentials (zero differentials: no filtering), allocates
+ * nothing, and gives a finite result for finite input. A spectrum texture
+ * read as a float gives its luminance (mt_rgb_y, what pbrt-v2's float image
+ * maps store); a float texture read as RGB is gray. */
 MT_API mt_real mt_texture_eval_float(const mt_texture *t, const mt_diffgeom *dg);
 MT_API mt_rgb mt_texture_eval_rgb(const mt_texture *t, const mt_diffgeom *dg);
+/* 1 for a float texture, 0 for a spectrum one; the class name ("checkerboard",
+ * a static string). */
 MT_API int mt_texture_is_float(const mt_texture *t);
 MT_API const char *mt_texture_class(const mt_texture *t);
+/* Another reference to t (returned; t may be NULL), and the end of one. */
 MT_API mt_texture *mt_texture_retain(mt_texture *t);
 MT_API void mt_texture_destroy(mt_texture *t);
 
-/* Constant textures (what a plain value in a material's parameters becomes). */
+/* A constant texture (what a plain value in a material's parameters
+ * becomes): a new reference, or NULL with err filled (MT_ERR_NOMEM). */
 MT_API mt_texture *mt_texture_constant_float(mt_real v, mt_error *err);
 MT_API mt_texture *mt_texture_constant_rgb(mt_rgb v, mt_error *err);
 
-/* Named textures, in two namespaces (float and spectrum) as in pbrt-v2. */
+/* A table of named textures, in two namespaces (float and spectrum) as in
+ * pbrt-v2; NULL when out of memory. An mt_state holds one (and
+ * mt_state_set_texture binds in it): most programs need no table of their
+ * own. mt_texture_table_destroy releases the table's references. */
 MT_API mt_texture_table *mt_texture_table_create(void);
 /* A copy sharing the textures (AttributeBegin); NULL when out of memory. */
 MT_API mt_texture_table *mt_texture_table_clone(const mt_texture_table *t);
 MT_API void mt_texture_table_destroy(mt_texture_table *t);
-/* Binds name to tex in tex's namespace, replacing (and releasing) an
- * earlier binding. The table takes its own reference: the caller keeps, and
- * later releases, the one it holds. */
+/* Binds name (copied) to tex in tex's namespace, replacing (and destroying
+ * its reference to) an earlier binding. The table takes its own reference:
+ * the caller keeps, and later destroys, the one it holds. MT_ERR_INVALID
+ * for a NULL table, name or texture, MT_ERR_NOMEM. */
 MT_API mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture *tex,
                                       mt_error *err);
-/* The texture bound to name, or NULL (no new reference). */
+/* The texture bound to name in the float (is_float != 0) or spectrum
+ * namespace, borrowed (valid while the binding is); NULL when there is none
+ * or t is NULL. */
 MT_API mt_texture *mt_texture_table_get(const mt_texture_table *t, const char *name,
                                         int is_float);
 
-/* pbrt-v2's TextureParams. */
+/* pbrt-v2's TextureParams, for mt_texture_create and mt_material_create. */
 typedef struct mt_texparams {
     const mt_paramset *geom;     /* may be NULL */
     const mt_paramset *material; /* may be NULL */
-    const mt_texture_table *textures;
+    const mt_texture_table *textures; /* may be NULL: no named textures */
     mt_mode mode;
 } mt_texparams;
 
-/* Creates a texture of pbrt-v2 class class_name ("constant", "checkerboard",
- * ...), float or spectrum, declared under the transform tex2world (pbrt-v2's
- * current transform at the Texture statement; NULL for the identity). NULL
- * with err filled for an unknown class, a class without that variant, or a
- * bad parameter: an unknown "mapping", "aamode", "wrap" or "dimension", a
+/* The low-level constructor: a texture of pbrt-v2 class class_name
+ * ("constant", "checkerboard", ...), float (is_float != 0) or spectrum,
+ * declared under the transform tex2world (pbrt-v2's current transform at
+ * the Texture statement; NULL for the identity). The lists are read, not
+ * kept; reporting their unused parameters is the caller's
+ * (mt_paramset_report_unused). A new reference, or NULL with err filled:
+ * an unknown class (MT_ERR_NOT_FOUND), a class without that variant, or a
+ * bad parameter -- an unknown "mapping", "aamode", "wrap" or "dimension", a
  * missing or unreadable image, octaves outside [0, 128], ... (pbrt-v2 warns
  * and substitutes a default for some of these). tp->mode selects pbrt-v2's
  * behaviour or the corrections (MT_FIX_MAPPING_3D, MT_FIX_DOTS_INSIDE, ...). */
@@ -111,7 +135,8 @@ MT_API mt_texture *mt_texture_from_text(const char *text, struct mt_state *state
 MT_API mt_texture *mt_texture_from_params(const char *class_name, int is_float, const mt_param *params,
                                           int nparams, const struct mt_state *state, mt_error *err);
 
-/* The class names, for help texts and tests; *count receives their number. */
+/* The class names (a static array of static strings), for help texts and
+ * tests; *count (may be NULL) receives their number. */
 MT_API const char *const *mt_texture_classes(int *count);
 
 #ifdef __cplusplus

@@ -4,6 +4,8 @@
  * One value type serves all three, as C cannot tell them apart anyway; the
  * operations follow pbrt-v2's geometry.h, including its cross product in
  * double precision and Normalize as a multiplication by 1/length.
+ *
+ * Thread safety: inline functions of their arguments alone.
  */
 #ifndef MATERIA_VEC_H
 #define MATERIA_VEC_H

@@ -264,15 +264,16 @@ const char *mt_mode_name(mt_mode mode)
     return "custom";
 }
 
-int mt_mode_parse(const char *name, mt_mode *mode)
+mt_status mt_mode_parse(const char *name, mt_mode *mode, mt_error *err)
 {
-    if (!strcmp(name, "pbrt-v2")) {
+    mt_error_clear(err);
+    if (name && !strcmp(name, "pbrt-v2")) {
         *mode = MT_MODE_PBRT_V2;
-        return 0;
+        return MT_OK;
     }
-    if (!strcmp(name, "corrected")) {
+    if (name && !strcmp(name, "corrected")) {
         *mode = MT_MODE_CORRECTED;
-        return 0;
+        return MT_OK;
     }
-    return -1;
+    return mt_error_set(err, MT_ERR_NOT_FOUND, "mode \"%s\" unknown (pbrt-v2 or corrected)", name ? name : "");
 }

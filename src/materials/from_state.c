@@ -46,7 +46,7 @@ static const mt_material *lookup(void *ctx, const char *name)
 static mt_material *from_spec(resolver *r, const mt_material_spec *spec, const mt_paramset *shape_params)
 {
     mt_texparams tp;
-    mt_material_ctx ctx = {lookup, NULL, NULL, NULL};
+    mt_material_ctx ctx = {lookup, NULL};
     ctx.lookup_ctx = r;
     /* a named material's own parameters come first, then those of the
      * Material current when it was made; a plain Material's parameters come

@@ -93,7 +93,7 @@ mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,
 {
     int i;
     mt_transform id = mt_transform_identity();
-    mt_material_ctx none = {NULL, NULL, NULL, NULL};
+    mt_material_ctx none = {NULL, NULL};
     mt_error_clear(err);
     if (!type) return mt_error_set(err, MT_ERR_INVALID, "material: no type given"), NULL;
     for (i = 0; i < NTYPES; ++i)

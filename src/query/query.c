@@ -385,7 +385,7 @@ static int query_mode(mt_query *q, const char *args, char *out, size_t size)
     char word[32];
     mt_mode m;
     int end = 0;
-    if (sscanf(args, " %31s%n", word, &end) != 1 || !only_space(args + end) || mt_mode_parse(word, &m) != 0)
+    if (sscanf(args, " %31s%n", word, &end) != 1 || !only_space(args + end) || mt_mode_parse(word, &m, NULL) != MT_OK)
         return fail_msg(out, size, "mode: pbrt-v2 or corrected");
     q->mode = m;
     mt_state_set_mode(q->state, m);

@@ -6,6 +6,9 @@
  * fault injector lets a test make the n-th allocation fail and check that the
  * failure is reported cleanly and nothing leaks. The counter is atomic; the
  * injector is meant for single-threaded tests.
+ *
+ * Thread safety: the counter is atomic; the fault injector is for single-
+ * threaded tests (set it while no other thread allocates).
  */
 #ifndef MATERIA_TOOLS_ALLOC_H
 #define MATERIA_TOOLS_ALLOC_H

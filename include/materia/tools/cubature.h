@@ -10,6 +10,9 @@
  * cannot be found by any quadrature: callers that know where mass may lie
  * start from a finer grid there (mt_bxdf_rho_quad uses the BxDF's own
  * sampler to find it).
+ *
+ * Thread safety: functions of their arguments (the integrand is called on
+ * the calling thread).
  */
 #ifndef MATERIA_TOOLS_CUBATURE_H
 #define MATERIA_TOOLS_CUBATURE_H

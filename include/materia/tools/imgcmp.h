@@ -30,6 +30,9 @@
  * narrower blocks along its right and bottom edges, each the mean of the
  * pixels it holds (every pixel counts once); pbrt-v2's 160x120 renders have
  * no partial 4x4 block.
+ *
+ * Thread safety: the comparison functions may run in any number of threads
+ * at once; an accumulator (mt_imgacc) belongs to one thread at a time.
  */
 #ifndef MATERIA_TOOLS_IMGCMP_H
 #define MATERIA_TOOLS_IMGCMP_H
@@ -76,6 +79,7 @@ typedef struct mt_pixel_errors {
     int max_x, max_y, max_c; /* where it is (the first such value in reading order) */
 } mt_pixel_errors;
 
+/* The errors above, over every pixel and colour channel of a and b. */
 MT_API mt_status mt_imgcmp_pixel_errors(const mt_image *a, const mt_image *b,
                                         mt_pixel_errors *out, mt_error *err);
 
@@ -166,6 +170,9 @@ MT_API mt_status mt_imgcmp_ztest(const mt_image *a, const mt_image *var_a, const
  * variance of exactly 0, which the z-test's exact rule relies on). */
 typedef struct mt_imgacc mt_imgacc;
 
+/* An accumulator for width x height images of 1, 3 or 4 channels, with no
+ * sample yet; NULL with err filled for a bad size or MT_ERR_NOMEM.
+ * mt_imgacc_destroy frees it. */
 MT_API mt_imgacc *mt_imgacc_create(int width, int height, int channels, mt_error *err);
 MT_API void mt_imgacc_destroy(mt_imgacc *acc);
 /* One sample of pixel (x, y): channels values. Out-of-range pixels are
@@ -175,8 +182,9 @@ MT_API void mt_imgacc_add(mt_imgacc *acc, int x, int y, const float *v);
  * its own seed): img must have the accumulator's size and channels. */
 MT_API mt_status mt_imgacc_add_image(mt_imgacc *acc, const mt_image *img, mt_error *err);
 /* The mean image and the variance of the mean, s^2 / n with the unbiased
- * sample variance s^2; either output may be NULL. Every pixel needs two
- * samples or more (MT_ERR_INVALID naming the first that has fewer). */
+ * sample variance s^2, as new images (mt_image_destroy); either output may
+ * be NULL. Every pixel needs two samples or more (MT_ERR_INVALID naming the
+ * first that has fewer). */
 MT_API mt_status mt_imgacc_finish(const mt_imgacc *acc, mt_image *mean, mt_image *var_of_mean,
                                   mt_error *err);
 

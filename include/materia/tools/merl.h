@@ -2,6 +2,8 @@
  * materia/tools/merl.h -- MERL tables of any BSDF: what materia-merl writes,
  * to test a measured-BRDF reader (materia's own or another renderer's)
  * against an analytic material.
+ *
+ * Thread safety: every function may be called from any thread at once.
  */
 #ifndef MATERIA_TOOLS_MERL_H
 #define MATERIA_TOOLS_MERL_H

@@ -19,6 +19,9 @@
  * statement continues on the next line while a bracket or string is open.
  * The whole protocol, with its rules for state, errors and numbers, is
  * docs/PROTOCOL.md; MT_QUERY_PROTOCOL_VERSION is its version.
+ *
+ * Thread safety: a session belongs to one thread at a time; sessions are
+ * independent of each other.
  */
 #ifndef MATERIA_TOOLS_QUERY_H
 #define MATERIA_TOOLS_QUERY_H
@@ -37,13 +40,17 @@ extern "C" {
 
 typedef struct mt_query mt_query;
 
-/* A session whose relative file names resolve against dir (NULL: "."). */
+/* A session whose relative file names resolve against dir (NULL: "."),
+ * in pbrt-v2 mode at the default shading point; NULL with err filled when
+ * out of memory. mt_query_destroy ends it. */
 MT_API mt_query *mt_query_create(const char *dir, mt_error *err);
 MT_API void mt_query_destroy(mt_query *q);
 
 /* Feeds one line (without its newline). Returns 1 and writes the answer into
- * out when the line completes a query, 0 when it was blank, a comment, or
- * the start of a statement that continues on the next line. */
+ * out (size bytes, always terminated; an answer that does not fit is cut)
+ * when the line completes a query, 0 when it was blank, a comment, or the
+ * start of a statement that continues on the next line. A bad query is
+ * answered "error <message>": this never fails otherwise. */
 MT_API int mt_query_line(mt_query *q, const char *line, char *out, size_t size);
 
 /* Where the session's warnings go (NULL: nowhere): the parameters a

@@ -1,6 +1,8 @@
 /*
  * materia/tools/sheet.h -- contact sheets: images laid out in a grid with a label
  * under each, tone mapped for display (make demo shows every material so).
+ *
+ * Thread safety: may be called from any thread at once.
  */
 #ifndef MATERIA_TOOLS_SHEET_H
 #define MATERIA_TOOLS_SHEET_H
