@@ -4,6 +4,7 @@
 #   make check                 every unit test and the conformance suite
 #   make PRECISION=double      the same with mt_real = double, in build/double
 #   make SANITIZE=address,undefined check
+#   make check-tsan            the thread-safety test under ThreadSanitizer (clang)
 #   make bench                 benchmarks (float and double, ratios from one run),
 #                              then materia and pbrt-v2 side by side (bench-pbrt)
 #   make bench-pbrt BENCH_SPP=16 BENCH_REPEAT=1 BENCH_GROUPS=material
@@ -170,7 +171,7 @@ SONAME     := lib$(LIBNAME).so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches tradeoffs tradeoff check check-full vectors other-conformance bench bench-pbrt demo golden fuzz install uninstall reference clean distclean help
+.PHONY: FORCE all lib tools tests benches tradeoffs tradeoff check check-tsan check-full vectors other-conformance bench bench-pbrt demo golden fuzz install uninstall reference clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -332,6 +333,14 @@ vectors:
 	build/float/tests/test_vectors --write vectors
 	build/double/tests/test_vectors --write vectors
 
+# ThreadSanitizer: the library and tests/test_threads.c (8 threads sharing
+# materials, textures, images, measured data and a scene) built with clang's
+# -fsanitize=thread in build/tsan and run; a data race fails it.
+TSAN_CC ?= clang
+check-tsan:
+	@$(MAKE) --no-print-directory BUILD=build/tsan CC=$(TSAN_CC) SANITIZE=thread LTO=no build/tsan/tests/test_threads
+	TSAN_OPTIONS="halt_on_error=1 $(TSAN_OPTIONS)" build/tsan/tests/test_threads
+
 # The conformance suite with far more samples and finer cells (slow).
 check-full: all tests
 	$(CONF_BIN) --full
@@ -442,7 +451,7 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,22p' Makefile
+	@sed -n '2,23p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \
