@@ -318,6 +318,7 @@ CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
 
 check: all tests $(if $(SANITIZE),,other-conformance)
 	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" REF_GEN="$(REF_GEN)" \
+	    CXX="$(if $(CXX_OK),$(CXX))" EXAMPLE_LIBS="$(MT_LDLIBS) $(LDLIBS)" \
 	    MATERIA_OTHER_QUERY="$(if $(SANITIZE),,$(OTHER_QUERY))" \
 	    sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST) $(FUZZ_BINS)
 

@@ -40,6 +40,9 @@ job materia-conformance "$build/bin/materia-conformance" ${CONF_ARGS:-}
 for t in "$@"; do
     case $(basename "$t") in test_impl|test_golden|test_pbrt_renders|test_dipole|test_render_*) ;; *) job "$(basename "$t")" "$t" ;; esac
 done
+# the embedding examples (examples/embed/, docs/EMBEDDING.md): built as C99
+# and C++17, run, their output checked, under valgrind when it is installed
+job examples sh tools/check-examples.sh "$build"
 # docs/REFERENCE.md against the tables it is generated from
 [ -n "${REF_GEN:-}" ] && job reference "$REF_GEN" --check docs/REFERENCE.md
 # make install into a temporary directory and a program built against it
