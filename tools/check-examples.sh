@@ -6,8 +6,9 @@
 # examples/embed/expected/NAME.txt (numbers within 1e-3 relative or 1e-4
 # absolute: float and double builds print the same to that precision), and
 # run under valgrind when it is installed (not in a sanitized build); each
-# .cpp program likewise as C++17 only. Also checks that docs/EMBEDDING.md
-# shows every program as it is. Prints PASS/FAIL/SKIP lines.
+# .cpp program likewise as C++17 only. Also checks that the README shows
+# quick.c and docs/EMBEDDING.md every other program as it is. Prints
+# PASS/FAIL/SKIP lines.
 # usage: check-examples.sh BUILD_DIR   (CC, CXX, SANITIZE, EXAMPLE_LIBS from the environment)
 build=$1
 cc=${CC:-cc}; cxx=${CXX:-}
@@ -88,13 +89,16 @@ for src in examples/embed/*.c examples/embed/*.cpp; do
     fi
 done
 
-# the documentation shows the programs that are tested, line for line
+# the documentation shows the programs that are tested, line for line: the
+# README the first, docs/EMBEDDING.md the others
 for src in examples/embed/*.c examples/embed/*.cpp; do
+    doc=docs/EMBEDDING.md
+    [ "$src" = examples/embed/quick.c ] && doc=README.md
     if awk -v f="$src" 'BEGIN { while ((getline l < f) > 0) want = want l "\n" }
-                        { doc = doc $0 "\n" } END { exit index(doc, want) ? 0 : 1 }' docs/EMBEDDING.md; then
-        pass "docs/EMBEDDING.md shows $src as it is"
+                        { doc = doc $0 "\n" } END { exit index(doc, want) ? 0 : 1 }' "$doc"; then
+        pass "$doc shows $src as it is"
     else
-        fail "docs/EMBEDDING.md does not show $src as it is (copy it into the document)"
+        fail "$doc does not show $src as it is (copy it into the document)"
     fi
 done
 exit $status
