@@ -176,19 +176,19 @@ MT_API mt_paramset *mt_paramset_clone(const mt_paramset *ps);
  * within float's range, an integral integer, a bool of 0 or 1, a number of
  * values that is a multiple of 3 for a point, vector, normal or RGB, no NULL
  * array or string); MT_ERR_INVALID naming the parameter otherwise, and
- * MT_ERR_NOMEM. A later parameter with the same name replaces an earlier
- * one, whatever their types, and goes to the end of the list (pbrt-v2
- * erases only one of the same type; a name declared with two types could
- * only fail at lookup here). Spectra are given as RGB: the parser converts
- * the other kinds. */
+ * MT_ERR_NOMEM. As in pbrt-v2's ParamSet, which keeps one list per type, a
+ * later parameter with the same name and type replaces the earlier one and
+ * goes to the end of the list, and one of another type lives beside it
+ * ("texture Kd" and "rgb Kd"): each lookup reads the one of its type.
+ * Spectra are given as RGB: the parser converts the other kinds. */
 MT_API mt_status mt_paramset_add(mt_paramset *ps, const mt_param *p, mt_error *err);
 
 /* The number of parameters (0 for NULL), and the i-th in the order given,
  * borrowed (valid until the list changes or goes; NULL when out of range). */
 MT_API int mt_paramset_count(const mt_paramset *ps);
 MT_API const mt_param *mt_paramset_at(const mt_paramset *ps, int i);
-/* The parameter called name (any type), borrowed, or NULL. Does not mark it
- * used. */
+/* The first parameter called name (of any type), borrowed, or NULL. Does not
+ * mark it used. */
 MT_API const mt_param *mt_paramset_find(const mt_paramset *ps, const char *name);
 /* Marks name used (e.g. when a caller consumed it by other means). */
 MT_API void mt_paramset_mark_used(const mt_paramset *ps, const char *name);
