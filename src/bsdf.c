@@ -25,7 +25,12 @@ mt_bsdf *mt_bsdf_create(mt_arena *a, mt_mode mode, const mt_diffgeom *dgs, mt_ve
                         mt_real eta, mt_error *err)
 {
     mt_error_clear(err);
-    mt_error_clear(err);
+    return mt__bsdf_create(a, mode, dgs, ng, eta, err);
+}
+
+mt_bsdf *mt__bsdf_create(mt_arena *a, mt_mode mode, const mt_diffgeom *dgs, mt_vec3 ng,
+                         mt_real eta, mt_error *err)
+{
     mt_bsdf *b;
     mt_vec3 nn = dgs->n, sn = dgs->dpdu;
     if (!usable(nn) || !usable(ng) || !mt_is_finite(eta)) {
@@ -62,13 +67,18 @@ mt_bsdf *mt_bsdf_create(mt_arena *a, mt_mode mode, const mt_diffgeom *dgs, mt_ve
 
 mt_status mt_bsdf_add(mt_bsdf *b, mt_bxdf *bxdf, mt_error *err)
 {
+    if (b && bxdf) mt_error_clear(err);
+    return mt__bsdf_add(b, bxdf, err);
+}
+
+mt_status mt__bsdf_add(mt_bsdf *b, mt_bxdf *bxdf, mt_error *err)
+{
     if (!b || !bxdf) {
         /* A creator failed and filled err (or had no err to fill): its error
          * is the one to report, so err is not reset here. */
         if (err && err->status != MT_OK) return err->status;
         return mt_error_set(err, MT_ERR_INVALID, b ? "bsdf: no BxDF to add" : "bsdf: no BSDF to add to");
     }
-    mt_error_clear(err);
     if (b->n >= MT_MAX_BXDFS)
         return mt_error_set(err, MT_ERR_LIMIT, "bsdf: more than %d BxDFs (adding a %s)",
                             MT_MAX_BXDFS, bxdf->ops->name);

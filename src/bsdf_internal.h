@@ -4,6 +4,15 @@
 
 #include "materia/bsdf.h"
 
+/* mt_bsdf_create without the reset of err, for a material's GetBSDF, which
+ * has reset it on entry (once per shading point). */
+mt_bsdf *mt__bsdf_create(mt_arena *a, mt_mode mode, const mt_diffgeom *dgs, mt_vec3 ng,
+                         mt_real eta, mt_error *err);
+
+/* mt_bsdf_add without the reset of err, for the materials (their GetBSDF
+ * has reset it): the same treatment of a NULL BSDF or BxDF. */
+mt_status mt__bsdf_add(mt_bsdf *b, mt_bxdf *bxdf, mt_error *err);
+
 /* Replaces component i (0 <= i < count) by x. */
 void mt__bsdf_set_component(mt_bsdf *b, int i, mt_bxdf *x);
 

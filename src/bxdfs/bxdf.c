@@ -4,14 +4,21 @@
  * sampling, the cosine pdf and the Monte Carlo reflectances.
  */
 #include "materia/bxdf.h"
+#include "bxdfs/kinds.h"
 #include "materia/sampling.h"
 #include "core/dir.h"
 
 void *mt_bxdf_alloc(mt_arena *a, size_t size, const mt_bxdf_ops *ops, unsigned type, mt_mode mode,
                     mt_error *err)
 {
-    mt_bxdf *b = mt_arena_alloc(a, size);
     mt_error_clear(err);
+    return mt__bxdf_alloc(a, size, ops, type, mode, err);
+}
+
+void *mt__bxdf_alloc(mt_arena *a, size_t size, const mt_bxdf_ops *ops, unsigned type, mt_mode mode,
+                     mt_error *err)
+{
+    mt_bxdf *b = mt_arena_alloc(a, size);
     if (!b) {
         mt_error_set(err, MT_ERR_NOMEM, "out of memory allocating a %s BxDF", ops->name);
         return NULL;

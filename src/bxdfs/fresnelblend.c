@@ -93,8 +93,8 @@ mt_bxdf *mt_fresnelblend_create(mt_arena *a, mt_mode mode, mt_rgb Rd, mt_rgb Rs,
         !mt__check_rgb(Rs, "Rs", "fresnelblend", err) ||
         !mt__check_distribution(&dist, "fresnelblend", err))
         return NULL;
-    fb = mt_bxdf_alloc(a, sizeof *fb, &fresnelblend_ops, MT_BSDF_REFLECTION | MT_BSDF_GLOSSY,
-                       mode, err);
+    fb = mt__bxdf_alloc(a, sizeof *fb, &fresnelblend_ops, MT_BSDF_REFLECTION | MT_BSDF_GLOSSY,
+                        mode, err);
     if (!fb) return NULL;
     fb->Rd = Rd;
     fb->Rs = Rs;

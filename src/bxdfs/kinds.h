@@ -4,6 +4,11 @@
 
 #include "materia/bxdf.h"
 
+/* mt_bxdf_alloc without the reset of err: for creators, which have reset it
+ * on entry (one call per BxDF built, in a renderer's inner loop). */
+void *mt__bxdf_alloc(mt_arena *a, size_t size, const mt_bxdf_ops *ops, unsigned type, mt_mode mode,
+                     mt_error *err);
+
 /* Creators reject NaN and infinite parameters with a message naming them. */
 static inline int mt__check_real(mt_real v, const char *param, const char *kind, mt_error *err)
 {

@@ -46,8 +46,8 @@ mt_bxdf *mt_lambertian_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_error *err
     lambertian *l;
     mt_error_clear(err);
     if (!mt__check_rgb(R, "R", "lambertian", err)) return NULL;
-    l = mt_bxdf_alloc(a, sizeof *l, &lambertian_ops, MT_BSDF_REFLECTION | MT_BSDF_DIFFUSE, mode,
-                      err);
+    l = mt__bxdf_alloc(a, sizeof *l, &lambertian_ops, MT_BSDF_REFLECTION | MT_BSDF_DIFFUSE, mode,
+                       err);
     if (!l) return NULL;
     l->R = R;
     return &l->base;

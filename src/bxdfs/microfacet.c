@@ -78,8 +78,8 @@ mt_bxdf *mt_microfacet_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_fresnel fr
         !mt__check_fresnel(&fresnel, "microfacet", err) ||
         !mt__check_distribution(&dist, "microfacet", err))
         return NULL;
-    m = mt_bxdf_alloc(a, sizeof *m, &microfacet_ops, MT_BSDF_REFLECTION | MT_BSDF_GLOSSY, mode,
-                      err);
+    m = mt__bxdf_alloc(a, sizeof *m, &microfacet_ops, MT_BSDF_REFLECTION | MT_BSDF_GLOSSY, mode,
+                       err);
     if (!m) return NULL;
     m->R = R;
     m->fresnel = fresnel;

@@ -50,8 +50,8 @@ mt_bxdf *mt_orennayar_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_real sigma_
     if (!mt__check_rgb(R, "R", "orennayar", err) ||
         !mt__check_real(sigma_deg, "sigma", "orennayar", err))
         return NULL;
-    o = mt_bxdf_alloc(a, sizeof *o, &orennayar_ops, MT_BSDF_REFLECTION | MT_BSDF_DIFFUSE, mode,
-                      err);
+    o = mt__bxdf_alloc(a, sizeof *o, &orennayar_ops, MT_BSDF_REFLECTION | MT_BSDF_DIFFUSE, mode,
+                       err);
     if (!o) return NULL;
     sigma = mt_radians(sigma_deg);
     sigma2 = sigma * sigma;

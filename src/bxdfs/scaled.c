@@ -53,7 +53,7 @@ mt_bxdf *mt_scaled_bxdf_create(mt_arena *a, mt_mode mode, mt_bxdf *bxdf, mt_rgb 
     mt_error_clear(err);
     if (!bxdf) return NULL; /* a failed creator: err already says why */
     if (!mt__check_rgb(scale, "scale", "scaled", err)) return NULL;
-    sc = mt_bxdf_alloc(a, sizeof *sc, &scaled_ops, bxdf->type, mode, err);
+    sc = mt__bxdf_alloc(a, sizeof *sc, &scaled_ops, bxdf->type, mode, err);
     if (!sc) return NULL;
     sc->inner = bxdf;
     sc->s = scale;

@@ -96,8 +96,8 @@ mt_bxdf *mt_specular_reflection_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_f
     if (!mt__check_rgb(R, "R", "specular_reflection", err) ||
         !mt__check_fresnel(&fresnel, "specular_reflection", err))
         return NULL;
-    s = mt_bxdf_alloc(a, sizeof *s, &specular_reflection_ops,
-                      MT_BSDF_REFLECTION | MT_BSDF_SPECULAR, mode, err);
+    s = mt__bxdf_alloc(a, sizeof *s, &specular_reflection_ops,
+                       MT_BSDF_REFLECTION | MT_BSDF_SPECULAR, mode, err);
     if (!s) return NULL;
     s->R = R;
     s->fresnel = fresnel;
@@ -113,8 +113,8 @@ mt_bxdf *mt_specular_transmission_create(mt_arena *a, mt_mode mode, mt_rgb T, mt
     if (!mt__check_rgb(T, "T", "specular_transmission", err) ||
         !mt__check_fresnel(&fr, "specular_transmission", err))
         return NULL;
-    s = mt_bxdf_alloc(a, sizeof *s, &specular_transmission_ops,
-                      MT_BSDF_TRANSMISSION | MT_BSDF_SPECULAR, mode, err);
+    s = mt__bxdf_alloc(a, sizeof *s, &specular_transmission_ops,
+                       MT_BSDF_TRANSMISSION | MT_BSDF_SPECULAR, mode, err);
     if (!s) return NULL;
     s->T = T;
     s->etai = etai;

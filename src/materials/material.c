@@ -174,7 +174,7 @@ mt_bsdf *mt_material_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom,
         mt_bump(m->bump, dg_geom, dg_shading, &bumped, 0);
         dgs = &bumped;
     }
-    b = mt_bsdf_create(arena, m->mode, dgs, dg_geom->n, m->ops->eta ? m->ops->eta(m, dgs) : 1, err);
+    b = mt__bsdf_create(arena, m->mode, dgs, dg_geom->n, m->ops->eta ? m->ops->eta(m, dgs) : 1, err);
     if (!b) return NULL;
     if (m->ops->add_bxdfs(m, b, dgs, arena, err) != MT_OK) return NULL;
     return b;

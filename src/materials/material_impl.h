@@ -130,7 +130,7 @@ mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg);
 /* Adds x (NULL: a creator failed and err says why) to the BSDF. */
 #define MT_ADD(bsdf, x, err)                                   \
     do {                                                       \
-        mt_status st_ = mt_bsdf_add((bsdf), (x), (err));       \
+        mt_status st_ = mt__bsdf_add((bsdf), (x), (err));      \
         if (st_) return st_;                                   \
     } while (0)
 

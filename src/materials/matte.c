@@ -17,8 +17,8 @@ static mt_status matte_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     mt_real sig;
     if (mt_rgb_is_black(r)) return MT_OK;
     sig = mt_clamp(MT_FLOAT(m, SIGMA, dgs), 0, 90);
-    if (sig == 0) return mt_bsdf_add(b, mt_lambertian_create(a, m->mode, r, err), err);
-    return mt_bsdf_add(b, mt_orennayar_create(a, m->mode, r, sig, err), err);
+    if (sig == 0) return mt__bsdf_add(b, mt_lambertian_create(a, m->mode, r, err), err);
+    return mt__bsdf_add(b, mt_orennayar_create(a, m->mode, r, sig, err), err);
 }
 
 const mt_material_ops mt__matte_ops = {"matte", matte_max, matte_add, NULL, NULL, NULL, NULL, slots, 2, NULL, NULL, 0};

@@ -19,8 +19,8 @@ static mt_status measured_add(const mt_material *m, mt_bsdf *b, const mt_diffgeo
 {
     const mt_measured *d = ((const measured_material *)m)->data;
     if (mt_measured_kind_of(d) == MT_MEASURED_HALFANGLE)
-        return mt_bsdf_add(b, mt_regular_halfangle_brdf_create(a, m->mode, d, err), err);
-    return mt_bsdf_add(b, mt_irregular_isotropic_brdf_create(a, m->mode, d, err), err);
+        return mt__bsdf_add(b, mt_regular_halfangle_brdf_create(a, m->mode, d, err), err);
+    return mt__bsdf_add(b, mt_irregular_isotropic_brdf_create(a, m->mode, d, err), err);
 }
 
 static void measured_destroy(mt_material *m) { mt_measured_destroy(((measured_material *)m)->data); }

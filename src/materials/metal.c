@@ -42,9 +42,9 @@ static mt_status metal_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     /* pbrt-v2 does not clamp eta and k */
     mt_rgb eta = mt_texture_eval_rgb(m->tex[ETA], dgs), k = mt_texture_eval_rgb(m->tex[K], dgs);
     mt_real rough = MT_FLOAT(m, ROUGHNESS, dgs);
-    return mt_bsdf_add(b, mt_microfacet_create(a, m->mode, mt_rgb_gray(1), mt_fresnel_conductor(eta, k),
-                                               mt_blinn(1 / rough), err),
-                       err);
+    return mt__bsdf_add(b, mt_microfacet_create(a, m->mode, mt_rgb_gray(1), mt_fresnel_conductor(eta, k),
+                                                mt_blinn(1 / rough), err),
+                        err);
 }
 
 /* eta and k default to copper's (metal_defaults) */

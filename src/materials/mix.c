@@ -53,7 +53,7 @@ static mt_bsdf *mix_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom, c
         mt__bsdf_set_component(b1, i, sc);
     }
     for (i = 0; i < n2; ++i)
-        if (mt_bsdf_add(b1, mt_scaled_bxdf_create(arena, m->mode, mt_bsdf_component(b2, i), s2, err), err)) return NULL;
+        if (mt__bsdf_add(b1, mt_scaled_bxdf_create(arena, m->mode, mt_bsdf_component(b2, i), s2, err), err)) return NULL;
     return b1;
 }
 

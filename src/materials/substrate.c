@@ -19,7 +19,7 @@ static mt_status substrate_add(const mt_material *m, mt_bsdf *b, const mt_diffge
     if (mt_rgb_is_black(d) && mt_rgb_is_black(s)) return MT_OK;
     u = MT_FLOAT(m, UROUGH, dgs);
     v = MT_FLOAT(m, VROUGH, dgs);
-    return mt_bsdf_add(b, mt_fresnelblend_create(a, m->mode, d, s, mt_anisotropic(1 / u, 1 / v), err), err);
+    return mt__bsdf_add(b, mt_fresnelblend_create(a, m->mode, d, s, mt_anisotropic(1 / u, 1 / v), err), err);
 }
 
 const mt_material_ops mt__substrate_ops = {"substrate", substrate_max, substrate_add, NULL, NULL, NULL, NULL, slots, 4, NULL, NULL, 0};
