@@ -390,8 +390,9 @@ demo: all
 
 # Renders the golden images again (golden/*.exr, golden/*.var.exr): after a
 # change that is meant to change images. Review the difference first.
+# GOLDEN_ONLY="NAME ..." renders those scenes alone.
 golden: all
-	sh tools/make-golden.sh $(BUILD)
+	GOLDEN_ONLY="$(GOLDEN_ONLY)" sh tools/make-golden.sh $(BUILD)
 
 # Installed files: headers (include/, or include/materia-double for the
 # double build), lib<LIBNAME>.a and .so, <LIBNAME>.pc, the tools (with a

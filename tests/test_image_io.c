@@ -311,9 +311,6 @@ static void test_exr_header(void)
  * and NAME.pfm (float RGB) hold the same pixels. */
 static void test_shared_renders(void)
 {
-    static const char *scenes[] = {"matte", "plastic", "glass", "mirror", "metal",
-                                   "shinymetal", "substrate", "translucent", "uber", "mix",
-                                   "measured", "subsurface", "kdsubsurface"};
     const char *shared = t_shared_dir();
     int k, agree = 0, total = 0;
     char name[128];
@@ -321,16 +318,22 @@ static void test_shared_renders(void)
         t_skip("exr/pfm: pbrt-v2 renders agree", "no ../shared directory");
         return;
     }
-    for (k = 0; k < (int)(sizeof scenes / sizeof scenes[0]); k++) {
+    /* every material kind pbrt-v2 has a render of */
+    for (k = 0; k < mt_material_kind_count(); k++) {
+        const char *scene = mt_material_kind_name(mt_material_kind_at(k));
         char pe[512], pp[512];
         mt_image e, p;
         mt_error err;
         long bad = 0;
         size_t i;
-        snprintf(pe, sizeof pe, "%s/reference/pbrt-v2/%s.exr", shared, scenes[k]);
-        snprintf(pp, sizeof pp, "%s/reference/pbrt-v2/%s.pfm", shared, scenes[k]);
-        snprintf(name, sizeof name, "exr/pfm: pbrt-v2 %s render, pixel for pixel", scenes[k]);
+        snprintf(pe, sizeof pe, "%s/reference/pbrt-v2/%s.exr", shared, scene);
+        snprintf(pp, sizeof pp, "%s/reference/pbrt-v2/%s.pfm", shared, scene);
+        snprintf(name, sizeof name, "exr/pfm: pbrt-v2 %s render, pixel for pixel", scene);
         mt_error_clear(&err);
+        if (access(pe, R_OK) != 0) {
+            t_skip(name, "%s: no render of this material in pbrt-v2's reference data", pe);
+            continue;
+        }
         if (mt_image_read(pe, &e, &err) != MT_OK) {
             t_fail(name, "%s", err.message);
             continue;

@@ -82,6 +82,28 @@ static char *next_line(reader *r, int *oom)
     }
 }
 
+/* --list materials|textures: the registered kinds, one a line, each
+ * followed by what a script may need to tell them apart. */
+static int list(const char *what)
+{
+    int i;
+    if (!strcmp(what, "materials")) {
+        for (i = 0; i < mt_material_kind_count(); ++i) {
+            const mt_material_kind *k = mt_material_kind_at(i);
+            printf("%s%s\n", mt_material_kind_name(k), mt_material_kind_has_bssrdf(k) ? " bssrdf" : "");
+        }
+    } else if (!strcmp(what, "textures")) {
+        for (i = 0; i < mt_texture_kind_count(); ++i) {
+            const mt_texture_kind *k = mt_texture_kind_at(i);
+            printf("%s%s\n", mt_texture_kind_name(k), mt_texture_kind_has_float(k) ? " float" : "");
+        }
+    } else {
+        fprintf(stderr, "materia-query: --list takes materials or textures, not \"%s\"\n", what);
+        return 2;
+    }
+    return fflush(stdout) == 0 ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
     const char *dir = NULL;
@@ -96,7 +118,10 @@ int main(int argc, char **argv)
             dir = argv[++i];
             if (!tool_directory("materia-query", "--dir", dir)) return 1;
         }
-        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+        else if (!strcmp(argv[i], "--list")) {
+            if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
+            return list(argv[i + 1]);
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             printf("usage: materia-query [--dir DIR] < queries\n"
                    "       materia-query --help | --version\n"
                    "Answers one line per query on standard output (see README.md, \"The query tool\");\n"

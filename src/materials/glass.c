@@ -21,9 +21,12 @@ static mt_status glass_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return MT_OK;
 }
 
-const mt_material_ops mt__glass_ops = {"glass", glass_max, glass_add, glass_eta, NULL, NULL, NULL, slots, 3, NULL, NULL, 0};
+const mt_material_kind mt_glass_material = {
+    .type = "glass",
+    .max_bxdfs = glass_max,
+    .add_bxdfs = glass_add,
+    .eta = glass_eta,
+    .slots = slots,
+    .nslots = MT_COUNT(slots),
+};
 
-mt_material *mt__glass_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__glass_ops, tp, err);
-}

@@ -17,9 +17,11 @@ static mt_status matte_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return mt_bsdf_add(b, mt_orennayar_create(a, m->mode, r, sig, err), err);
 }
 
-const mt_material_ops mt__matte_ops = {"matte", matte_max, matte_add, NULL, NULL, NULL, NULL, slots, 2, NULL, NULL, 0};
+const mt_material_kind mt_matte_material = {
+    .type = "matte",
+    .max_bxdfs = matte_max,
+    .add_bxdfs = matte_add,
+    .slots = slots,
+    .nslots = MT_COUNT(slots),
+};
 
-mt_material *mt__matte_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__matte_ops, tp, err);
-}

@@ -80,10 +80,12 @@ static void metal_defaults(mt_tex_slot *s)
     }
 }
 
-const mt_material_ops mt__metal_ops = {"metal", metal_max, metal_add, NULL, NULL, NULL, NULL,
-                                       slots, 3, metal_defaults, NULL, 0};
+const mt_material_kind mt_metal_material = {
+    .type = "metal",
+    .max_bxdfs = metal_max,
+    .add_bxdfs = metal_add,
+    .slots = slots,
+    .nslots = MT_COUNT(slots),
+    .defaults = metal_defaults,
+};
 
-mt_material *mt__metal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__metal_ops, tp, err);
-}

@@ -12,9 +12,11 @@ static mt_status mirror_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom 
     return MT_OK;
 }
 
-const mt_material_ops mt__mirror_ops = {"mirror", mirror_max, mirror_add, NULL, NULL, NULL, NULL, slots, 1, NULL, NULL, 0};
+const mt_material_kind mt_mirror_material = {
+    .type = "mirror",
+    .max_bxdfs = mirror_max,
+    .add_bxdfs = mirror_add,
+    .slots = slots,
+    .nslots = MT_COUNT(slots),
+};
 
-mt_material *mt__mirror_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__mirror_ops, tp, err);
-}

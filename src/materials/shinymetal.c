@@ -27,15 +27,22 @@ static mt_status shiny_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return MT_OK;
 }
 
-const mt_material_ops mt__shinymetal_ops = {"shinymetal", shiny_max, shiny_add, NULL, NULL, NULL, NULL, slots, 3, NULL, NULL, 0};
-
-mt_material *mt__shinymetal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
-                                   mt_error *err)
+static mt_material *shinymetal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
+                                      mt_error *err)
 {
-    mt_material *m = mt__material_new(sizeof(mt_material), &mt__shinymetal_ops, tp, err);
+    mt_material *m = mt__material_new(sizeof(mt_material), &mt_shinymetal_material, tp, err);
     if (m && !m->bump && !(m->bump = mt_texture_constant_float(0, err))) {
         mt_material_release(m);
         return NULL;
     }
     return m;
 }
+
+const mt_material_kind mt_shinymetal_material = {
+    .type = "shinymetal",
+    .create = shinymetal_create,
+    .max_bxdfs = shiny_max,
+    .add_bxdfs = shiny_add,
+    .slots = slots,
+    .nslots = MT_COUNT(slots),
+};

@@ -50,10 +50,12 @@ static mt_status translucent_add(const mt_material *m, mt_bsdf *b, const mt_diff
     return MT_OK;
 }
 
-const mt_material_ops mt__translucent_ops = {"translucent", translucent_max, translucent_add, translucent_eta, NULL, NULL, NULL, slots, 5, NULL, NULL, 0};
+const mt_material_kind mt_translucent_material = {
+    .type = "translucent",
+    .max_bxdfs = translucent_max,
+    .add_bxdfs = translucent_add,
+    .eta = translucent_eta,
+    .slots = slots,
+    .nslots = MT_COUNT(slots),
+};
 
-mt_material *mt__translucent_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
-                                    mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__translucent_ops, tp, err);
-}

@@ -1,6 +1,6 @@
 /* pbrt-v2 MixTexture (textures/mix.h): (1 - amount) tex1 + amount tex2, the
  * amount a float texture. */
-#include "textures/tex.h"
+#include "textures/create.h"
 
 typedef struct mix {
     mt__pair_tex pair;
@@ -27,7 +27,12 @@ static void mix_finalize(mt_texture *t)
     mt_texture_release(((mix *)t)->amount);
 }
 
-static const mt_texture_ops mix_ops = {"mix", mix_float, mix_rgb, mix_finalize};
+static const mt_texture_ops mix_ops = {
+    .name = "mix",
+    .eval_float = mix_float,
+    .eval_rgb = mix_rgb,
+    .finalize = mix_finalize,
+};
 
 mt_texture *mt__tex_mix(int is_float, mt_texture *tex1, mt_texture *tex2, mt_texture *amount,
                         mt_mode mode, mt_error *err)
@@ -39,3 +44,29 @@ mt_texture *mt__tex_mix(int is_float, mt_texture *tex1, mt_texture *tex2, mt_tex
     m->amount = mt_texture_retain(amount);
     return &m->pair.base;
 }
+
+static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+                          mt_error *err)
+{
+    mt__tex_children c;
+    mt_texture *t = NULL;
+    if (mt__tex_children_get(tp, is_float, "tex1", 0, "tex2", 1, &c, err) &&
+        (c.amount = mt_texparams_float_texture(tp, "amount", (mt_real)0.5, err)))
+        t = mt__tex_mix(is_float, c.a, c.b, c.amount, tp->mode, err);
+    mt__tex_children_put(&c);
+    return t;
+}
+
+static const mt__texture_param_doc params[] = {
+    {"tex1", "any", "(1 - amount) tex1 + amount tex2"},
+    {"tex2", "any", "(1 - amount) tex1 + amount tex2"},
+    {"amount", "any (used as it is)", "the weight of tex2"},
+};
+
+const mt_texture_kind mt_mix_texture = {
+    .name = "mix",
+    .has_float = 1,
+    .create = create,
+    .params = params,
+    .nparams = MT_COUNT(params),
+};

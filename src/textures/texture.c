@@ -1,12 +1,32 @@
 /*
- * The texture handle: allocation, reference counting, evaluation through
+ * The texture handle: creation from a kind (registry.c finds kinds by
+ * name), allocation, reference counting, evaluation through
  * the class's operations table, and the table of named textures with its two
  * namespaces (pbrt-v2 api.cpp GraphicsState floatTextures and
  * spectrumTextures).
  */
 #include <string.h>
 #include "core/alloc.h"
+#include "textures/kind.h"
 #include "textures/tex.h"
+
+mt_texture *mt_texture_create_kind(const mt_texture_kind *k, int is_float, const mt_transform *tex2world,
+                                   const mt_texparams *tp, mt_error *err)
+{
+    mt_transform id = mt_transform_identity();
+    if (!k || !tp) {
+        mt_error_set(err, MT_ERR_INVALID, "texture: missing kind or parameters");
+        return NULL;
+    }
+    if (is_float && !k->has_float) {
+        mt_error_set(err, MT_ERR_INVALID, "pbrt-v2 has no float \"%s\" texture", k->name);
+        return NULL;
+    }
+    return k->create(is_float ? 1 : 0, tex2world ? tex2world : &id, tp, err);
+}
+
+const char *mt_texture_kind_name(const mt_texture_kind *k) { return k->name; }
+int mt_texture_kind_has_float(const mt_texture_kind *k) { return k->has_float; }
 
 void *mt__texture_alloc(size_t size, const mt_texture_ops *ops, int is_float, mt_mode mode,
                         mt_error *err)

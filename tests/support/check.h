@@ -58,10 +58,4 @@ const char *t_shared_dir(void);
 #define T_SANITIZED 0
 #endif
 
-/* The 11 material scenes that need no dipole integrator, by name (golden/
- * and ../shared/reference/scenes/ both have one per name). */
-#define T_MATERIAL_SCENES                                                                   \
-    {"matte", "plastic", "glass", "mirror", "metal", "shinymetal", "substrate", "translucent", \
-     "uber", "mix", "measured"}
-
 #endif
