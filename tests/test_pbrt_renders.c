@@ -75,6 +75,7 @@ int main(void)
         t_skip("pbrt-v2 renders", "not under the sanitizers (20 million samples per scene); the unsanitized builds run it");
         return 0;
     }
+    if (!t_has_format("exr", "pbrt-v2 renders (its images are EXR)")) return 0;
     nnoise = read_noise(shared, noise, 32);
     if (nnoise <= 0) {
         t_fail("pbrt-v2 renders", "cannot read noise.txt");

@@ -3,7 +3,7 @@
 #include "materials/material_impl.h"
 
 enum { KR, KT, INDEX };
-static const mt_tex_slot slots[] = {{"Kr", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular reflectance"},
+static const mt_tex_slot glass_slots[] = {{"Kr", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular reflectance"},
                                     {"Kt", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular transmittance"},
                                     {"index", 1, {1.5f}, MT_RANGE_POS, "index of refraction (outside: 1)"}};
 
@@ -26,7 +26,7 @@ const mt_material_kind mt_glass_material = {
     .max_bxdfs = glass_max,
     .add_bxdfs = glass_add,
     .eta = glass_eta,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = glass_slots,
+    .nslots = MT_COUNT(glass_slots),
 };
 

@@ -185,6 +185,6 @@ int mt__material_get_bssrdf_cached(const mt_material *m, const mt_diffgeom *dg_s
 
 int mt__material_max_bxdfs(const mt_material *m) { return m->ops->max_bxdfs(m); }
 
-mt_rgb mt__tex_rgb(const mt_texture *t, const mt_diffgeom *dg) { return mt_rgb_clamp0(mt_texture_eval_rgb(t, dg)); }
-mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg) { return mt_texture_eval_float(t, dg); }
+mt_rgb mt__mat_rgb(const mt_texture *t, const mt_diffgeom *dg) { return mt_rgb_clamp0(mt_texture_eval_rgb(t, dg)); }
+mt_real mt__mat_float(const mt_texture *t, const mt_diffgeom *dg) { return mt_texture_eval_float(t, dg); }
 

@@ -118,12 +118,12 @@ int mt__material_max_bxdfs(const mt_material *m);
 
 /* Evaluations shared by the materials: a spectrum texture clamped from below
  * (pbrt-v2's Evaluate(dgs).Clamp()), and a float texture. */
-mt_rgb mt__tex_rgb(const mt_texture *t, const mt_diffgeom *dg);
-mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg);
+mt_rgb mt__mat_rgb(const mt_texture *t, const mt_diffgeom *dg);
+mt_real mt__mat_float(const mt_texture *t, const mt_diffgeom *dg);
 
 /* tex[i] evaluated at the shading point (spectra clamped from below). */
-#define MT_RGB(m, i, dgs) mt__tex_rgb((m)->tex[(i)], (dgs))
-#define MT_FLOAT(m, i, dgs) mt__tex_float((m)->tex[(i)], (dgs))
+#define MT_RGB(m, i, dgs) mt__mat_rgb((m)->tex[(i)], (dgs))
+#define MT_FLOAT(m, i, dgs) mt__mat_float((m)->tex[(i)], (dgs))
 
 /* Adds x (NULL: a creator failed and err says why) to the BSDF. */
 #define MT_ADD(bsdf, x, err)                                   \

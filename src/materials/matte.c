@@ -3,7 +3,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, SIGMA };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot matte_slots[] = {
     {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"sigma", 1, {0}, MT_RANGE_SIGMA, "Oren-Nayar roughness: the standard deviation of the facet angle, in degrees"}};
 
@@ -21,7 +21,7 @@ const mt_material_kind mt_matte_material = {
     .type = "matte",
     .max_bxdfs = matte_max,
     .add_bxdfs = matte_add,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = matte_slots,
+    .nslots = MT_COUNT(matte_slots),
 };
 

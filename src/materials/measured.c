@@ -25,7 +25,7 @@ static mt_status measured_add(const mt_material *m, mt_bsdf *b, const mt_diffgeo
 
 static void measured_destroy(mt_material *m) { mt_measured_release(((measured_material *)m)->data); }
 
-static const mt_param_doc other[] = {
+static const mt_param_doc measured_other[] = {
     {"filename", "string", "(required)", "a readable file",
      "a .brdf file (irregular isotropic samples) or a MERL binary table (any other suffix)"}};
 
@@ -62,6 +62,6 @@ const mt_material_kind mt_measured_material = {
     .max_bxdfs = measured_max,
     .add_bxdfs = measured_add,
     .destroy = measured_destroy,
-    .other = other,
-    .nother = MT_COUNT(other),
+    .other = measured_other,
+    .nother = MT_COUNT(measured_other),
 };

@@ -1,7 +1,7 @@
 /* mirror (pbrt-v2 mirror.cpp): specular reflection with no Fresnel term. */
 #include "materials/material_impl.h"
 
-static const mt_tex_slot slots[] = {{"Kr", 0, {0.9f, 0.9f, 0.9f}, MT_RANGE_CLAMP0, "specular reflectance (no Fresnel term)"}};
+static const mt_tex_slot mirror_slots[] = {{"Kr", 0, {0.9f, 0.9f, 0.9f}, MT_RANGE_CLAMP0, "specular reflectance (no Fresnel term)"}};
 
 static int mirror_max(const mt_material *m) { return 1; }
 
@@ -16,7 +16,7 @@ const mt_material_kind mt_mirror_material = {
     .type = "mirror",
     .max_bxdfs = mirror_max,
     .add_bxdfs = mirror_add,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = mirror_slots,
+    .nslots = MT_COUNT(mirror_slots),
 };
 

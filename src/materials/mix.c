@@ -12,10 +12,10 @@
 #include "materials/uniform.h"
 
 enum { AMOUNT };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot mix_slots[] = {
     {"amount", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0,
      "weight of namedmaterial1; namedmaterial2 has 1 - amount, also taken as 0 below 0"}};
-static const mt_param_doc other[] = {
+static const mt_param_doc mix_other[] = {
     {"namedmaterial1", "string", "(required)", "a MakeNamedMaterial name", "the first material"},
     {"namedmaterial2", "string", "(required)", "a MakeNamedMaterial name", "the second material"}};
 
@@ -116,8 +116,8 @@ const mt_material_kind mt_mix_material = {
     .destroy = mix_destroy,
     .get_bsdf = mix_get_bsdf,
     .is_uniform = mix_is_uniform,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
-    .other = other,
-    .nother = MT_COUNT(other),
+    .slots = mix_slots,
+    .nslots = MT_COUNT(mix_slots),
+    .other = mix_other,
+    .nother = MT_COUNT(mix_other),
 };

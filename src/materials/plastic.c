@@ -7,7 +7,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, ROUGHNESS };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot plastic_slots[] = {
     {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
     {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"}};
@@ -28,7 +28,7 @@ const mt_material_kind mt_plastic_material = {
     .type = "plastic",
     .max_bxdfs = plastic_max,
     .add_bxdfs = plastic_add,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = plastic_slots,
+    .nslots = MT_COUNT(plastic_slots),
 };
 

@@ -9,26 +9,26 @@
 
 #define KIND(name) &mt_##name##_material,
 #define NAME(name) #name,
-static const mt_material_kind *const kinds[] = {MT_MATERIAL_KINDS(KIND)};
-static const char *const names[] = {MT_MATERIAL_KINDS(NAME) NULL};
-#define NKINDS MT_COUNT(kinds)
+static const mt_material_kind *const material_kinds[] = {MT_MATERIAL_KINDS(KIND)};
+static const char *const material_names[] = {MT_MATERIAL_KINDS(NAME) NULL};
+#define NKINDS MT_COUNT(material_kinds)
 
 int mt_material_kind_count(void) { return NKINDS; }
 
-const mt_material_kind *mt_material_kind_at(int i) { return i >= 0 && i < NKINDS ? kinds[i] : NULL; }
+const mt_material_kind *mt_material_kind_at(int i) { return i >= 0 && i < NKINDS ? material_kinds[i] : NULL; }
 
 const mt_material_kind *mt_material_kind_find(const char *name)
 {
     int i;
     for (i = 0; name && i < NKINDS; ++i)
-        if (!strcmp(kinds[i]->type, name)) return kinds[i];
+        if (!strcmp(material_kinds[i]->type, name)) return material_kinds[i];
     return NULL;
 }
 
 const char *const *mt_material_types(int *count)
 {
     if (count) *count = NKINDS;
-    return names;
+    return material_names;
 }
 
 mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,

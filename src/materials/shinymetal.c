@@ -9,7 +9,7 @@
 #include "materials/material_impl.h"
 
 enum { KS, ROUGHNESS, KR };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot shinymetal_slots[] = {
     {"Ks", 0, {1, 1, 1}, MT_RANGE_APPROX, "normal-incidence reflectance of the glossy lobe"},
     {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"},
     {"Kr", 0, {1, 1, 1}, MT_RANGE_APPROX, "normal-incidence reflectance of the specular lobe"}};
@@ -43,6 +43,6 @@ const mt_material_kind mt_shinymetal_material = {
     .create = shinymetal_create,
     .max_bxdfs = shiny_max,
     .add_bxdfs = shiny_add,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = shinymetal_slots,
+    .nslots = MT_COUNT(shinymetal_slots),
 };

@@ -4,7 +4,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, UROUGH, VROUGH };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot substrate_slots[] = {
     {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance of the substrate"},
     {"Ks", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "normal-incidence reflectance of the coat"},
     {"uroughness", 1, {0.1f}, MT_RANGE_NONNEG, "the anisotropic exponent along dpdu is 1/uroughness"},
@@ -23,7 +23,7 @@ const mt_material_kind mt_substrate_material = {
     .type = "substrate",
     .max_bxdfs = substrate_max,
     .add_bxdfs = substrate_add,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = substrate_slots,
+    .nslots = MT_COUNT(substrate_slots),
 };
 

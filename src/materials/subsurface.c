@@ -13,10 +13,10 @@
 enum { KR, INDEX, SIGMA_A, SIGMA_PRIME_S };
 enum { KD = SIGMA_A, MFP };
 
-typedef struct subsurface {
+typedef struct subsurface_mat {
     mt_material base;
     mt_real scale;
-} subsurface;
+} subsurface_mat;
 
 static int ss_max(const mt_material *m) { return 1; }
 
@@ -30,7 +30,7 @@ static mt_status ss_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs
 
 static int ss_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt__bssrdf_cache *cache, mt_bssrdf *out)
 {
-    mt_real scale = ((const subsurface *)m)->scale;
+    mt_real scale = ((const subsurface_mat *)m)->scale;
     /* pbrt-v2 does not clamp these */
     out->sigma_a = mt_rgb_scale(mt_texture_eval_rgb(m->tex[SIGMA_A], dgs), scale);
     out->sigma_prime_s = mt_rgb_scale(mt_texture_eval_rgb(m->tex[SIGMA_PRIME_S], dgs), scale);
@@ -72,7 +72,7 @@ static mt_material *subsurface_create(const mt_transform *xf, const mt_texparams
     const char *name = "";
     mt_real scale = 1;
     mt_tex_slot slots[4];
-    subsurface *x;
+    subsurface_mat *x;
     int c;
     memcpy(slots, ss_slots, sizeof slots);
     if (mt_texparams_string(tp, "name", "", &name, err) || mt_texparams_float(tp, "scale", 1, &scale, err))

@@ -9,7 +9,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, ROUGHNESS, REFLECT, TRANSMIT };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot translucent_slots[] = {
     {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
     {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"},
@@ -55,7 +55,7 @@ const mt_material_kind mt_translucent_material = {
     .max_bxdfs = translucent_max,
     .add_bxdfs = translucent_add,
     .eta = translucent_eta,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = translucent_slots,
+    .nslots = MT_COUNT(translucent_slots),
 };
 

@@ -10,7 +10,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, KR, KT, ROUGHNESS, INDEX, OPACITY };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot uber_slots[] = {
     {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
     {"Kr", 0, {0}, MT_RANGE_CLAMP0, "specular reflectance"},
@@ -59,7 +59,7 @@ const mt_material_kind mt_uber_material = {
     .type = "uber",
     .max_bxdfs = uber_max,
     .add_bxdfs = uber_add,
-    .slots = slots,
-    .nslots = MT_COUNT(slots),
+    .slots = uber_slots,
+    .nslots = MT_COUNT(uber_slots),
 };
 

@@ -62,7 +62,7 @@ mt_texture *mt__tex_bilerp(int is_float, const mt_map2d *map, const mt_rgb v[4],
     return &b->base;
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *bilerp_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     static const char *const names[4] = {"v00", "v01", "v10", "v11"};
@@ -76,7 +76,7 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return mt__tex_bilerp(is_float, &m, v, tp->mode, err);
 }
 
-static const mt__texture_param_doc params[] = {
+static const mt__texture_param_doc bilerp_params[] = {
     {"v00", "finite", "the value at (u, v) = (0, 0)"},
     {"v01", "finite", "the value at (0, 1)"},
     {"v10", "finite", "the value at (1, 0)"},
@@ -86,7 +86,7 @@ static const mt__texture_param_doc params[] = {
 const mt_texture_kind mt_bilerp_texture = {
     .name = "bilerp",
     .has_float = 1,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = bilerp_create,
+    .params = bilerp_params,
+    .nparams = MT_COUNT(bilerp_params),
 };

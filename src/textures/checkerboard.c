@@ -123,7 +123,7 @@ mt_texture *mt__tex_checker3d(int is_float, const mt_map3d *map, mt_texture *tex
     return &c->pair.base;
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *checkerboard_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     static const char *const aamodes[] = {"none", "closedform", NULL};
@@ -153,7 +153,7 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return t;
 }
 
-static const mt__texture_param_doc params[] = {
+static const mt__texture_param_doc checkerboard_params[] = {
     {"dimension", "2 or 3", "2: on (u, v); 3: in space (no mapping, no antialiasing)"},
     {"tex1", "any", "the even squares"},
     {"tex2", "any", "the odd squares"},
@@ -163,7 +163,7 @@ static const mt__texture_param_doc params[] = {
 const mt_texture_kind mt_checkerboard_texture = {
     .name = "checkerboard",
     .has_float = 1,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = checkerboard_create,
+    .params = checkerboard_params,
+    .nparams = MT_COUNT(checkerboard_params),
 };

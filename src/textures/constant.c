@@ -47,7 +47,7 @@ mt_texture *mt_texture_constant_rgb(mt_rgb v, mt_error *err)
     return mt__tex_constant(0, v, MT_MODE_PBRT_V2, err);
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *constant_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     mt_rgb v;
@@ -55,12 +55,12 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return mt__tex_constant(is_float, v, tp->mode, err);
 }
 
-static const mt__texture_param_doc params[] = {{"value", "finite", "the value everywhere"}};
+static const mt__texture_param_doc constant_params[] = {{"value", "finite", "the value everywhere"}};
 
 const mt_texture_kind mt_constant_texture = {
     .name = "constant",
     .has_float = 1,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = constant_create,
+    .params = constant_params,
+    .nparams = MT_COUNT(constant_params),
 };

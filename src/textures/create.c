@@ -27,24 +27,6 @@ const mt__texture_param_doc *mt__texture_common_docs(int *count)
     return common;
 }
 
-mt_texture *mt__tex_child(const mt_texparams *tp, int is_float, const char *name, mt_real def,
-                          mt_error *err)
-{
-    if (is_float) return mt_texparams_float_texture(tp, name, def, err);
-    return mt_texparams_spectrum_texture(tp, name, mt_rgb_gray(def), err);
-}
-
-mt_status mt__tex_value(const mt_texparams *tp, int is_float, const char *name, mt_real def,
-                        mt_rgb *out, mt_error *err)
-{
-    mt_real v = def;
-    mt_status st;
-    if (!is_float) return mt_texparams_rgb(tp, name, mt_rgb_gray(def), out, err);
-    st = mt_texparams_float(tp, name, def, &v, err);
-    *out = mt_rgb_gray(v);
-    return st;
-}
-
 int mt__tex_choice(const mt_texparams *tp, const char *name, const char *def,
                    const char *const *choices, const char *cls, mt_error *err)
 {

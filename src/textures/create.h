@@ -8,10 +8,10 @@
 #include "textures/kind.h"
 #include "textures/tex.h"
 
-/* A float or spectrum child texture with a gray default. */
+/* (texparams.c) A float or spectrum child texture with a gray default. */
 mt_texture *mt__tex_child(const mt_texparams *tp, int is_float, const char *name, mt_real def,
                           mt_error *err);
-/* A float or spectrum value with a gray default, as an RGB. */
+/* (texparams.c) A float or spectrum value with a gray default, as an RGB. */
 mt_status mt__tex_value(const mt_texparams *tp, int is_float, const char *name, mt_real def,
                         mt_rgb *out, mt_error *err);
 /* A string parameter's value among choices (NULL-terminated): its index, or

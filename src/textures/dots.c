@@ -17,7 +17,7 @@ typedef struct dots {
 } dots;
 
 /* 1 on a dot, 0 around the dots. */
-static mt_real inside(const mt_texture *t, const mt_diffgeom *dg)
+static mt_real on_dot(const mt_texture *t, const mt_diffgeom *dg)
 {
     mt_st st;
     mt_real scell, tcell;
@@ -57,12 +57,12 @@ mt_texture *mt__tex_dots(int is_float, const mt_map2d *map, mt_texture *inside_t
         d = mt__pair_alloc(sizeof *d, &dots_ops, is_float, inside_tex, "inside", outside_tex,
                            "outside", mode, err);
     if (!d) return NULL;
-    d->pair.weight = inside;
+    d->pair.weight = on_dot;
     d->map = *map;
     return &d->pair.base;
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *dots_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     mt__tex_children c;
@@ -75,7 +75,7 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return t;
 }
 
-static const mt__texture_param_doc params[] = {
+static const mt__texture_param_doc dots_params[] = {
     {"inside", "any", "inside the dots"},
     {"outside", "any", "between the dots"},
 };
@@ -83,7 +83,7 @@ static const mt__texture_param_doc params[] = {
 const mt_texture_kind mt_dots_texture = {
     .name = "dots",
     .has_float = 1,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = dots_create,
+    .params = dots_params,
+    .nparams = MT_COUNT(dots_params),
 };

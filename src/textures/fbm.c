@@ -16,7 +16,7 @@ mt_texture *mt__tex_fbm(int is_float, const mt_map3d *map, int octaves, mt_real 
                            mt__fbm, mode, err);
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *fbm_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     return mt__tex_create_octaves(mt__tex_fbm, is_float, tex2world, tp, err);
@@ -25,5 +25,5 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
 const mt_texture_kind mt_fbm_texture = {
     .name = "fbm",
     .has_float = 1,
-    .create = create,
+    .create = fbm_create,
 };

@@ -15,7 +15,7 @@ typedef struct imagemap {
     const mt_mipmap *mip;
 } imagemap;
 
-static mt_rgb lookup(const mt_texture *t, const mt_diffgeom *dg)
+static mt_rgb imagemap_lookup(const mt_texture *t, const mt_diffgeom *dg)
 {
     const imagemap *im = (const imagemap *)t;
     mt_st st;
@@ -25,13 +25,13 @@ static mt_rgb lookup(const mt_texture *t, const mt_diffgeom *dg)
 
 static mt_real imagemap_float(const mt_texture *t, const mt_diffgeom *dg)
 {
-    return lookup(t, dg).c[0];
+    return imagemap_lookup(t, dg).c[0];
 }
 
 static const mt_texture_ops imagemap_ops = {
     .name = "imagemap",
     .eval_float = imagemap_float,
-    .eval_rgb = lookup,
+    .eval_rgb = imagemap_lookup,
 };
 
 mt_texture *mt__tex_imagemap(int is_float, const mt_map2d *map, const mt_mipmap *mip,
@@ -52,7 +52,7 @@ mt_texture *mt__tex_imagemap(int is_float, const mt_map2d *map, const mt_mipmap 
 
 /* pbrt-v2 CreateImage*Texture: the parameters checked here; the pyramid
  * comes from the process-wide MIP-map cache (each file read once). */
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *imagemap_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     static const char *const wraps[] = {"repeat", "black", "clamp", NULL}; /* mt_wrap order */
@@ -89,7 +89,7 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return mt__tex_imagemap(is_float, &m, mip, tp->mode, err);
 }
 
-static const mt__texture_param_doc params[] = {
+static const mt__texture_param_doc imagemap_params[] = {
     {"filename", "an .exr, .png or .pfm file (required)", "the image, read once per process"},
     {"maxanisotropy", "> 0 (with EWA filtering)", "the longest ellipse axis over the shortest"},
     {"trilinear", "true or false", "trilinear filtering instead of EWA"},
@@ -101,7 +101,7 @@ static const mt__texture_param_doc params[] = {
 const mt_texture_kind mt_imagemap_texture = {
     .name = "imagemap",
     .has_float = 1,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = imagemap_create,
+    .params = imagemap_params,
+    .nparams = MT_COUNT(imagemap_params),
 };

@@ -88,7 +88,7 @@ mt_texture *mt__tex_marble(const mt_map3d *map, int octaves, mt_real roughness, 
     return &m->noise.base;
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *marble_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     mt_map3d m = mt__map3d(tex2world, tp->mode);
@@ -100,7 +100,7 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return mt__tex_marble(&m, oct, rough, scale, variation, tp->mode, err);
 }
 
-static const mt__texture_param_doc params[] = {
+static const mt__texture_param_doc marble_params[] = {
     {"scale", "finite", "the point's coordinates times scale"},
     {"variation", "finite", "the strength of the noise in the marble's bands"},
 };
@@ -108,7 +108,7 @@ static const mt__texture_param_doc params[] = {
 const mt_texture_kind mt_marble_texture = {
     .name = "marble",
     .has_float = 0,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = marble_create,
+    .params = marble_params,
+    .nparams = MT_COUNT(marble_params),
 };

@@ -2,21 +2,21 @@
  * amount a float texture. */
 #include "textures/create.h"
 
-typedef struct mix {
+typedef struct mix_tex {
     mt__pair_tex pair;
     mt_texture *amount;
-} mix;
+} mix_tex;
 
 static mt_real mix_float(const mt_texture *t, const mt_diffgeom *dg)
 {
-    const mix *m = (const mix *)t;
+    const mix_tex *m = (const mix_tex *)t;
     mt_real a = mt__tex_f(m->pair.tex1, dg), b = mt__tex_f(m->pair.tex2, dg);
     return mt__tex_blend(mt__tex_f(m->amount, dg), a, b);
 }
 
 static mt_rgb mix_rgb(const mt_texture *t, const mt_diffgeom *dg)
 {
-    const mix *m = (const mix *)t;
+    const mix_tex *m = (const mix_tex *)t;
     mt_rgb a = mt__tex_rgb(m->pair.tex1, dg), b = mt__tex_rgb(m->pair.tex2, dg);
     return mt__tex_blend_rgb(mt__tex_f(m->amount, dg), a, b);
 }
@@ -24,7 +24,7 @@ static mt_rgb mix_rgb(const mt_texture *t, const mt_diffgeom *dg)
 static void mix_finalize(mt_texture *t)
 {
     mt__pair_finalize(t);
-    mt_texture_release(((mix *)t)->amount);
+    mt_texture_release(((mix_tex *)t)->amount);
 }
 
 static const mt_texture_ops mix_ops = {
@@ -37,7 +37,7 @@ static const mt_texture_ops mix_ops = {
 mt_texture *mt__tex_mix(int is_float, mt_texture *tex1, mt_texture *tex2, mt_texture *amount,
                         mt_mode mode, mt_error *err)
 {
-    mix *m;
+    mix_tex *m;
     if (!mt__tex_check_child(amount, 1, "amount", "mix", err)) return NULL;
     m = mt__pair_alloc(sizeof *m, &mix_ops, is_float, tex1, "tex1", tex2, "tex2", mode, err);
     if (!m) return NULL;
@@ -45,7 +45,7 @@ mt_texture *mt__tex_mix(int is_float, mt_texture *tex1, mt_texture *tex2, mt_tex
     return &m->pair.base;
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *mixtex_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     mt__tex_children c;
@@ -57,7 +57,7 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return t;
 }
 
-static const mt__texture_param_doc params[] = {
+static const mt__texture_param_doc mixtex_params[] = {
     {"tex1", "any", "(1 - amount) tex1 + amount tex2"},
     {"tex2", "any", "(1 - amount) tex1 + amount tex2"},
     {"amount", "any (used as it is)", "the weight of tex2"},
@@ -66,7 +66,7 @@ static const mt__texture_param_doc params[] = {
 const mt_texture_kind mt_mix_texture = {
     .name = "mix",
     .has_float = 1,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = mixtex_create,
+    .params = mixtex_params,
+    .nparams = MT_COUNT(mixtex_params),
 };

@@ -11,26 +11,26 @@
 
 #define KIND(name) &mt_##name##_texture,
 #define NAME(name) #name,
-static const mt_texture_kind *const kinds[] = {MT_TEXTURE_KINDS(KIND)};
-static const char *const names[] = {MT_TEXTURE_KINDS(NAME) NULL};
-#define NKINDS MT_COUNT(kinds)
+static const mt_texture_kind *const texture_kinds[] = {MT_TEXTURE_KINDS(KIND)};
+static const char *const texture_names[] = {MT_TEXTURE_KINDS(NAME) NULL};
+#define NKINDS MT_COUNT(texture_kinds)
 
 int mt_texture_kind_count(void) { return NKINDS; }
 
-const mt_texture_kind *mt_texture_kind_at(int i) { return i >= 0 && i < NKINDS ? kinds[i] : NULL; }
+const mt_texture_kind *mt_texture_kind_at(int i) { return i >= 0 && i < NKINDS ? texture_kinds[i] : NULL; }
 
 const mt_texture_kind *mt_texture_kind_find(const char *name)
 {
     int i;
     for (i = 0; name && i < NKINDS; ++i)
-        if (!strcmp(kinds[i]->name, name)) return kinds[i];
+        if (!strcmp(texture_kinds[i]->name, name)) return texture_kinds[i];
     return NULL;
 }
 
 const char *const *mt_texture_classes(int *count)
 {
     if (count) *count = NKINDS;
-    return names;
+    return texture_names;
 }
 
 mt_texture *mt_texture_create(const char *class_name, int is_float, const mt_transform *tex2world,

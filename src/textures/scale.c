@@ -27,7 +27,7 @@ mt_texture *mt__tex_scale(int is_float, mt_texture *tex1, mt_texture *tex2, mt_m
                           mode, err);
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *scale_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     mt__tex_children c;
@@ -38,7 +38,7 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
     return t;
 }
 
-static const mt__texture_param_doc params[] = {
+static const mt__texture_param_doc scale_params[] = {
     {"tex1", "any", "tex1 times tex2"},
     {"tex2", "any", "tex1 times tex2"},
 };
@@ -46,7 +46,7 @@ static const mt__texture_param_doc params[] = {
 const mt_texture_kind mt_scale_texture = {
     .name = "scale",
     .has_float = 1,
-    .create = create,
-    .params = params,
-    .nparams = MT_COUNT(params),
+    .create = scale_create,
+    .params = scale_params,
+    .nparams = MT_COUNT(scale_params),
 };

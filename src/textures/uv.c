@@ -38,7 +38,7 @@ mt_texture *mt__tex_uv(const mt_map2d *map, mt_mode mode, mt_error *err)
     return &u->base;
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *uv_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     mt_map2d m;
@@ -49,5 +49,5 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
 const mt_texture_kind mt_uv_texture = {
     .name = "uv",
     .has_float = 0,
-    .create = create,
+    .create = uv_create,
 };

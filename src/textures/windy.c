@@ -27,7 +27,7 @@ mt_texture *mt__tex_windy(int is_float, const mt_map3d *map, mt_mode mode, mt_er
                            mt__fbm, mode, err);
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *windy_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     mt_map3d m = mt__map3d(tex2world, tp->mode);
@@ -37,5 +37,5 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
 const mt_texture_kind mt_windy_texture = {
     .name = "windy",
     .has_float = 1,
-    .create = create,
+    .create = windy_create,
 };

@@ -16,7 +16,7 @@ mt_texture *mt__tex_wrinkled(int is_float, const mt_map3d *map, int octaves, mt_
                            roughness, mt__turbulence, mode, err);
 }
 
-static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+static mt_texture *wrinkled_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
                           mt_error *err)
 {
     return mt__tex_create_octaves(mt__tex_wrinkled, is_float, tex2world, tp, err);
@@ -25,5 +25,5 @@ static mt_texture *create(int is_float, const mt_transform *tex2world, const mt_
 const mt_texture_kind mt_wrinkled_texture = {
     .name = "wrinkled",
     .has_float = 1,
-    .create = create,
+    .create = wrinkled_create,
 };
