@@ -15,6 +15,8 @@
 #                              the speed/accuracy trade report, float and
 #                              double builds: build/tradeoff/report.md
 #   make reference             docs/REFERENCE.md from the parameter tables
+#   make amalgamation          build/amalgamation/materia.c and materia.h
+#   make NO_EXR=1 NO_PNG=1     without OpenEXR, without libpng (either or both)
 #   make vectors               write the published conformance vectors (vectors/)
 #   make fuzz FUZZ_SECONDS=60  libFuzzer on every reader (clang), N seconds each
 #   make install PREFIX=/usr/local DESTDIR=   (make uninstall with the same)
@@ -35,26 +37,38 @@ comma := ,
 ifeq ($(filter $(PRECISION),float double),)
 $(error PRECISION must be float or double, not '$(PRECISION)')
 endif
-BUILD ?= build/$(PRECISION)$(if $(SANITIZE),-$(subst $(comma),-,$(SANITIZE)))
+# Image formats left out (docs/LINKING.md): NO_EXR=1 builds without OpenEXR,
+# NO_PNG=1 without libpng, each in a build directory of its own.
+NO_EXR ?=
+NO_PNG ?=
+OMIT := $(if $(NO_EXR),-noexr)$(if $(NO_PNG),-nopng)
+BUILD ?= build/$(PRECISION)$(if $(SANITIZE),-$(subst $(comma),-,$(SANITIZE)))$(OMIT)
 
 # --- dependencies, found with pkg-config ------------------------------------
 # OpenEXR: only its C API (OpenEXRCore). The OpenEXR module's Libs would drag
 # in the C++ libraries, so only its variables are read.
-NEED_DEPS := $(filter-out clean distclean help uninstall,$(or $(MAKECMDGOALS),all))
+NEED_DEPS := $(filter-out clean distclean help uninstall amalgamation,$(or $(MAKECMDGOALS),all))
+DEP_MODULES := $(strip $(if $(NO_PNG),,libpng) $(if $(NO_EXR),,OpenEXR))
 ifneq ($(NEED_DEPS),)
-  DEPS_OK := $(shell $(PKG_CONFIG) --exists libpng OpenEXR 2>/dev/null && echo yes)
+  DEPS_OK := $(if $(DEP_MODULES),$(shell $(PKG_CONFIG) --exists $(DEP_MODULES) 2>/dev/null && echo yes),yes)
   ifneq ($(DEPS_OK),yes)
-    $(error missing build dependencies (pkg-config, libpng, OpenEXR). Install them with: \
-      sudo apt-get install -y pkg-config libpng-dev libopenexr-dev)
+    $(error missing build dependencies (pkg-config $(DEP_MODULES)). Install them with: \
+      sudo apt-get install -y pkg-config $(if $(NO_PNG),,libpng-dev) $(if $(NO_EXR),,libopenexr-dev) \
+      (or leave a format out: make NO_EXR=1, make NO_PNG=1))
   endif
-  EXR_INCDIR := $(shell $(PKG_CONFIG) --variable=includedir OpenEXR)
-  EXR_LIBDIR := $(shell $(PKG_CONFIG) --variable=libdir OpenEXR)
-  EXR_SUFFIX := $(shell $(PKG_CONFIG) --variable=libsuffix OpenEXR)
-  PNG_CFLAGS := $(shell $(PKG_CONFIG) --cflags libpng)
-  PNG_LIBS   := $(shell $(PKG_CONFIG) --libs libpng)
+  ifeq ($(NO_EXR),)
+    EXR_INCDIR := $(shell $(PKG_CONFIG) --variable=includedir OpenEXR)
+    EXR_LIBDIR := $(shell $(PKG_CONFIG) --variable=libdir OpenEXR)
+    EXR_SUFFIX := $(shell $(PKG_CONFIG) --variable=libsuffix OpenEXR)
+  endif
+  ifeq ($(NO_PNG),)
+    PNG_CFLAGS := $(shell $(PKG_CONFIG) --cflags libpng)
+    PNG_LIBS   := $(shell $(PKG_CONFIG) --libs libpng)
+  endif
 endif
-DEP_CFLAGS := $(filter-out -I/usr/include,-I$(EXR_INCDIR) $(PNG_CFLAGS))
-DEP_LIBS   := -L$(EXR_LIBDIR) -lOpenEXRCore$(EXR_SUFFIX) $(PNG_LIBS)
+DEP_CFLAGS := $(filter-out -I/usr/include,$(if $(NO_EXR),,-I$(EXR_INCDIR)) $(PNG_CFLAGS)) \
+              -DMATERIA_HAVE_EXR=$(if $(NO_EXR),0,1) -DMATERIA_HAVE_PNG=$(if $(NO_PNG),0,1)
+DEP_LIBS   := $(if $(NO_EXR),,-L$(EXR_LIBDIR) -lOpenEXRCore$(EXR_SUFFIX)) $(PNG_LIBS)
 
 # --- flags -------------------------------------------------------------------
 MT_WARN    := -std=c99 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes \
@@ -126,7 +140,7 @@ TSUP_SRC  := $(sort $(wildcard tests/support/*.c))
 BENCH_SRC := $(sort $(wildcard bench/*.c))
 TRADE_SRC := $(sort $(wildcard tradeoff/*.c))
 
-FUZZ_TARGETS := scene query brdf merl exr png pfm spd
+FUZZ_TARGETS := scene query brdf merl $(if $(NO_EXR),,exr) $(if $(NO_PNG),,png) pfm spd
 
 LIB_OBJ   := $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
 CONF_OBJ  := $(CONF_SRC:%.c=$(BUILD)/obj/%.o)
@@ -171,7 +185,7 @@ SONAME     := lib$(LIBNAME).so.$(SOVERSION)
 CONFIG_H   := $(BUILD)/include/materia/config.h
 FLAGS_STAMP := $(BUILD)/flags
 
-.PHONY: FORCE all lib tools tests benches tradeoffs tradeoff check check-tsan check-full vectors other-conformance bench bench-pbrt demo golden fuzz install uninstall reference clean distclean help
+.PHONY: FORCE all lib tools tests benches tradeoffs tradeoff check check-tsan check-full vectors other-conformance bench bench-pbrt demo golden fuzz install uninstall reference amalgamation clean distclean help
 .DEFAULT_GOAL := all
 
 all: lib tools $(CONF_BIN)
@@ -314,12 +328,15 @@ OTHER_PRECISION := $(if $(filter double,$(PRECISION)),float,double)
 OTHER_BUILD     := $(if $(filter build/$(PRECISION),$(BUILD)),build/$(OTHER_PRECISION),$(BUILD)-$(OTHER_PRECISION))
 OTHER_CONF      := $(OTHER_BUILD)/bin/materia-conformance
 OTHER_QUERY     := $(OTHER_BUILD)/bin/materia-query
-CONF_ARGS       := $(if $(SANITIZE),--lite,--ulps $(OTHER_CONF))
+# A build without an image format (NO_EXR, NO_PNG) runs the suite --lite
+# too, without the other precision: what it checks is that everything but
+# the left-out formats works, and the full builds run the statistics.
+CONF_ARGS       := $(if $(SANITIZE)$(OMIT),--lite,--ulps $(OTHER_CONF))
 
-check: all tests $(if $(SANITIZE),,other-conformance)
+check: all tests $(if $(SANITIZE)$(OMIT),,other-conformance)
 	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" REF_GEN="$(REF_GEN)" \
 	    CXX="$(if $(CXX_OK),$(CXX))" EXAMPLE_LIBS="$(MT_LDLIBS) $(LDLIBS)" \
-	    MATERIA_OTHER_QUERY="$(if $(SANITIZE),,$(OTHER_QUERY))" \
+	    MATERIA_OTHER_QUERY="$(if $(SANITIZE)$(OMIT),,$(OTHER_QUERY))" \
 	    sh tools/run-checks.sh $(BUILD) $(PRECISION) $(TESTS) $(CXX_TEST) $(FUZZ_BINS)
 
 other-conformance:
@@ -394,26 +411,41 @@ fuzz:
 	    LTO=no CFLAGS="-O1 -g -fsanitize=fuzzer-no-link $(FUZZ_CFLAGS)" $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/libfuzzer/fuzz-%)
 	sh tools/run-fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
+# The library as one C file and one header, as SQLite ships
+# (tools/amalgamate.sh, docs/LINKING.md): AMALGAMATION/materia.c builds with
+# `cc -std=c99 -c materia.c` alone. make check builds and runs programs from
+# it (tools/check-amalgamation.sh).
+AMALGAMATION ?= build/amalgamation
+amalgamation:
+	sh tools/amalgamate.sh $(AMALGAMATION) $(VERSION)
+
 # A contact sheet of every material (golden/scenes) in demo.png.
 demo: all
 	sh tools/make-demo.sh $(BUILD)
 
 # Renders the golden images again (golden/*.exr, golden/*.var.exr): after a
 # change that is meant to change images. Review the difference first.
+# GOLDEN_ONLY="NAME ..." renders those scenes alone.
 golden: all
-	sh tools/make-golden.sh $(BUILD)
+	GOLDEN_ONLY="$(GOLDEN_ONLY)" sh tools/make-golden.sh $(BUILD)
 
 # Installed files: headers (include/, or include/materia-double for the
-# double build), lib<LIBNAME>.a and .so, <LIBNAME>.pc, the tools (with a
+# double build), lib<LIBNAME>.a and .so, <LIBNAME>.pc and <LIBNAME>-shared.pc
+# (materia.pc.in says why two), the tools (with a
 # -double suffix for the double build) and the documentation with the
-# licence in share/doc/<LIBNAME>. make uninstall removes exactly these.
+# licence, the vectors and the examples in share/doc/<LIBNAME>. make
+# uninstall removes exactly these.
 INC_DIR   := $(PREFIX)/include$(if $(filter double,$(PRECISION)),/materia-double)
 LIB_DIR   := $(PREFIX)/lib
 BIN_DIR   := $(PREFIX)/bin
 DOC_DIR   := $(PREFIX)/share/doc/$(LIBNAME)
 TOOL_SUFFIX := $(if $(filter double,$(PRECISION)),-double)
 INSTALLED_TOOLS := $(notdir $(TOOLS) $(CONF_BIN))
-DOC_FILES := README.md LICENSE conformance/ERRATA.md $(sort $(wildcard docs/*.md))
+# the documentation keeps the source tree's layout, so that its relative
+# links hold: docs/, the conformance vectors with vectors/check.py, the
+# examples (tools/check-install.sh checks every link of the installed docs)
+DOC_FILES := README.md LICENSE conformance/ERRATA.md $(sort $(wildcard docs/*.md docs/tradeoff/*.png)) \
+             $(sort $(shell find vectors examples -type f ! -name '*.pyc' ! -path '*/__pycache__/*' 2>/dev/null))
 PUBLIC_HEADERS := $(sort $(notdir $(wildcard include/materia/*.h)) config.h)
 TOOL_HEADERS   := $(sort $(notdir $(wildcard include/materia/tools/*.h)))
 
@@ -427,11 +459,16 @@ install: all
 	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIB_DIR)/$(SONAME)
 	ln -sf $(notdir $(SHARED_LIB)) $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).so
 	for t in $(INSTALLED_TOOLS); do install -m 755 $(BUILD)/bin/$$t $(DESTDIR)$(BIN_DIR)/$$t$(TOOL_SUFFIX) || exit 1; done
-	install -m 644 $(DOC_FILES) $(DESTDIR)$(DOC_DIR)/
-	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' -e 's|@LIBNAME@|$(LIBNAME)|g' \
-	    -e 's|@INCLUDEDIR@|$(INC_DIR:$(PREFIX)/%=%)|g' -e 's|@PRECISION@|$(PRECISION)|g' \
-	    -e 's|@PRIVATE_LIBS@|$(DEP_LIBS) -lpthread -lm|g' materia.pc.in \
-	    > $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME).pc
+	for f in $(DOC_FILES); do \
+	    install -d $(DESTDIR)$(DOC_DIR)/$$(dirname $$f) && \
+	    install -m $$([ -x $$f ] && echo 755 || echo 644) $$f $(DESTDIR)$(DOC_DIR)/$$f || exit 1; \
+	done
+	for pc in materia materia-shared; do \
+	    sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' -e 's|@LIBNAME@|$(LIBNAME)|g' \
+	        -e 's|@INCLUDEDIR@|$(INC_DIR:$(PREFIX)/%=%)|g' -e 's|@PRECISION@|$(PRECISION)|g' \
+	        -e 's|@PRIVATE_LIBS@|$(DEP_LIBS) -lpthread -lm|g' $$pc.pc.in \
+	        > $(DESTDIR)$(LIB_DIR)/pkgconfig/$$(echo $$pc | sed 's|^materia|$(LIBNAME)|').pc || exit 1; \
+	done
 
 uninstall:
 	rm -f $(DESTDIR)$(INC_DIR)/materia.h $(DESTDIR)$(INC_DIR)/materia_tools.h \
@@ -439,10 +476,11 @@ uninstall:
 	      $(addprefix $(DESTDIR)$(INC_DIR)/materia/tools/,$(TOOL_HEADERS))
 	rm -f $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).a $(DESTDIR)$(LIB_DIR)/$(notdir $(SHARED_LIB)) \
 	      $(DESTDIR)$(LIB_DIR)/$(SONAME) $(DESTDIR)$(LIB_DIR)/lib$(LIBNAME).so \
-	      $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME).pc
+	      $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME).pc $(DESTDIR)$(LIB_DIR)/pkgconfig/$(LIBNAME)-shared.pc
 	rm -f $(addprefix $(DESTDIR)$(BIN_DIR)/,$(addsuffix $(TOOL_SUFFIX),$(INSTALLED_TOOLS)))
-	rm -f $(addprefix $(DESTDIR)$(DOC_DIR)/,$(notdir $(DOC_FILES)))
-	-rmdir $(DESTDIR)$(INC_DIR)/materia/tools $(DESTDIR)$(INC_DIR)/materia $(DESTDIR)$(DOC_DIR) 2>/dev/null
+	rm -f $(addprefix $(DESTDIR)$(DOC_DIR)/,$(DOC_FILES))
+	-find $(DESTDIR)$(DOC_DIR) -depth -type d -empty -exec rmdir {} \; 2>/dev/null
+	-rmdir $(DESTDIR)$(INC_DIR)/materia/tools $(DESTDIR)$(INC_DIR)/materia 2>/dev/null
 	$(if $(filter double,$(PRECISION)),-rmdir $(DESTDIR)$(INC_DIR) 2>/dev/null)
 
 clean:
@@ -452,7 +490,7 @@ distclean:
 	rm -rf build
 
 help:
-	@sed -n '2,23p' Makefile
+	@sed -n '2,25p' Makefile
 
 -include $(LIB_OBJ:.o=.d) $(CONF_OBJ:.o=.d) $(TSUP_OBJ:.o=.d) \
          $(TOOL_SRC:tools/%.c=$(BUILD)/obj/tools/%.d) $(TEST_SRC:tests/%.c=$(BUILD)/obj/tests/%.d) \

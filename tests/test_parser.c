@@ -3,6 +3,7 @@
  * statements over several lines with their locations, every directive's
  * arguments, Include, mt_parse_incomplete, and the shared reference scenes.
  */
+#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
 #include "materia/parser.h"
@@ -340,30 +341,38 @@ static mt_status count_only(void *ctx, const mt_statement *st, mt_error *err)
 
 static void test_shared_scenes(void)
 {
-    static const char *const scenes[] = {
-        "matte", "plastic", "glass", "mirror", "metal", "shinymetal", "substrate", "translucent",
-        "uber", "mix", "measured", "subsurface", "kdsubsurface", "real-bunny-measured",
-        "real-killeroo-simple", "real-metal-teapot", "real-ss-envmap"};
     static const char *const configs[] = {"bsdf-configs.txt", "texture-configs.txt"};
     const char *shared = t_shared_dir();
     char path[1024], dir[1024];
+    struct dirent *e;
+    DIR *d;
+    int nscenes = 0;
     size_t i;
     if (!shared) {
         t_skip("shared scenes", "no shared reference data (../shared)");
         return;
     }
-    for (i = 0; i < sizeof scenes / sizeof scenes[0]; ++i) {
+    /* every scene file of the reference data (one per material, the real
+     * scenes) */
+    snprintf(dir, sizeof dir, "%s/reference/scenes", shared);
+    d = opendir(dir);
+    while (d && (e = readdir(d)) != NULL) {
+        size_t len = strlen(e->d_name);
         mt_error err;
         long n = 0;
         mt_status rc;
-        char name[128];
-        snprintf(path, sizeof path, "%s/reference/scenes/%s.pbrt", shared, scenes[i]);
-        snprintf(name, sizeof name, "shared scene %s parses", scenes[i]);
+        char name[512];
+        if (len < 6 || strcmp(e->d_name + len - 5, ".pbrt")) continue;
+        nscenes++;
+        if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= sizeof path) continue;
+        snprintf(name, sizeof name, "shared scene %.*s parses", (int)(len - 5), e->d_name);
         rc = mt_parse_file(path, NULL, count_only, &n, &err);
         t_check(rc == MT_OK && n > 10, name, "%ld statements: %s:%d:%d %s", n, err.file, err.line,
                 err.column, err.message);
     }
-    snprintf(dir, sizeof dir, "%s/reference/scenes", shared);
+    if (d) closedir(d);
+    t_check(nscenes >= 17, "shared scenes: every material's and the real scenes", "%d scene files in %s",
+            nscenes, dir);
     for (i = 0; i < 2; ++i) {
         FILE *f;
         char line[4096], name[128];

@@ -287,13 +287,17 @@ static void texture_values(const char *tool, const char *tmp)
     }
     fgets(line, sizeof line, fo);
     for (c = 0; c < nid; ++c) {
-        int nrow = 0, bad = 0, shown = 0, nan_rows = 0;
+        int nrow = 0, bad = 0, shown = 0, nan_rows = 0, absent = 0;
         char name[128];
         fgets(line, sizeof line, fo); /* AttributeBegin */
         fgets(line, sizeof line, fo); /* statements */
         if (strncmp(line, "ok", 2)) {
             line[strcspn(line, "\n")] = 0;
-            t_fail(ids[c], "statements rejected: %s", line);
+            /* an image format this build left out (make NO_EXR=1) */
+            if ((absent = strstr(line, "this build of materia has no") != NULL))
+                t_skip(ids[c], "%s", line);
+            else
+                t_fail(ids[c], "statements rejected: %s", line);
         }
         for (i = 0; i < nrows; ++i) {
             double got[3];
@@ -329,6 +333,7 @@ static void texture_values(const char *tool, const char *tmp)
         }
         fgets(line, sizeof line, fo); /* AttributeEnd */
         snprintf(name, sizeof name, "pbrt-v2 texture values %.63s (materia-query)", ids[c]);
+        if (absent) continue;
         verdict(name, nrow, bad, 108);
         if (nan_rows)
             t_xfail(name, "%d rows where pbrt-v2 returns NaN (erratum checker-one-sided) answered finite", nan_rows);

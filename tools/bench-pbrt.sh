@@ -6,8 +6,9 @@
 # materia/pbrt-v2 per scene, the worst and the geometric mean).
 #
 # usage: bench-pbrt.sh BUILD [GROUP ...]
-#   GROUP  material (the 11 path-traced material scenes), subsurface (subsurface,
-#          kdsubsurface), real (real-killeroo-simple, real-bunny-measured,
+#   GROUP  material (the scenes of the material kinds without a BSSRDF, as
+#          materia-query --list materials gives them), subsurface (those with
+#          one: subsurface, kdsubsurface), real (real-killeroo-simple, real-bunny-measured,
 #          real-metal-teapot, real-ss-envmap), bvh (pbrt-v2's BVH build of the
 #          bunny beside materia's, from bench/embree's harness); default: all
 # environment:
@@ -92,8 +93,8 @@ bvh_build() {
 for group in "$@"; do
     [ "$group" != bvh ] || { bvh_build || status=1; continue; }
     case $group in
-        material) list="matte plastic glass mirror metal shinymetal substrate translucent uber mix measured" ;;
-        subsurface) list="subsurface kdsubsurface" ;;
+        material) list=$("$root/$build/bin/materia-query" --list materials | awk '$2 != "bssrdf" { print $1 }') ;;
+        subsurface) list=$("$root/$build/bin/materia-query" --list materials | awk '$2 == "bssrdf" { print $1 }') ;;
         real) list="real-killeroo-simple real-bunny-measured real-metal-teapot real-ss-envmap" ;;
         *) echo "bench-pbrt: unknown group '$group' (material, subsurface, real, bvh)" >&2; exit 2 ;;
     esac

@@ -27,14 +27,42 @@ inc=$root$prefix/include; [ "$precision" = double ] && inc=$inc/materia-double
 missing=
 for f in "$inc/materia.h" "$inc/materia/config.h" "$inc/materia/bsdf.h" \
          "$root$prefix/lib/lib$name.a" "$root$prefix/lib/lib$name.so.0" "$root$prefix/lib/lib$name.so" \
-         "$root$prefix/lib/pkgconfig/$name.pc" "$root$prefix/share/doc/$name/LICENSE" \
-         "$root$prefix/share/doc/$name/README.md" "$root$prefix/share/doc/$name/ERRATA.md" \
+         "$root$prefix/lib/pkgconfig/$name.pc" "$root$prefix/lib/pkgconfig/$name-shared.pc" \
+         "$root$prefix/share/doc/$name/LICENSE" \
+         "$root$prefix/share/doc/$name/README.md" "$root$prefix/share/doc/$name/conformance/ERRATA.md" \
          "$root$prefix/bin/materia-render$suffix" "$root$prefix/bin/materia-query$suffix" \
          "$root$prefix/bin/materia-conformance$suffix"; do
     [ -e "$f" ] || missing="$missing ${f#$root}"
 done
 if [ -z "$missing" ]; then pass "headers, lib$name.a/.so, $name.pc, the tools$suffix, docs and LICENSE installed"
 else fail "not installed:$missing"; fi
+# what the installed documentation cites is installed: every relative link
+# of its Markdown files (docs, vectors, examples, images) resolves there
+doc=$root$prefix/share/doc/$name
+broken=
+for md in $(cd "$doc" && find . -name '*.md' | sort); do
+    for target in $(grep -o '](\([^)#]*\)' "$doc/$md" | sed 's/^](//' | grep -v '^[a-z]*:' | sort -u); do
+        [ -e "$(dirname "$doc/$md")/$target" ] || broken="$broken ${md#./}->$target"
+    done
+done
+if [ -z "$broken" ] && [ -f "$doc/vectors/check.py" ] && [ -f "$doc/examples/README.md" ] &&
+   [ -f "$doc/docs/CONFORMANCE-SUITE.md" ]; then
+    pass "the installed docs' links resolve (vectors, check.py, the examples included)"
+else
+    fail "installed docs cite what is not installed:${broken:- vectors/check.py, examples/README.md or docs/}"
+fi
+# the installed check.py against the installed materia-query (a usage error
+# for a lookahead: --only is a POSIX extended regular expression)
+if command -v python3 >/dev/null 2>&1 && python3 -c 'import sys; sys.exit(sys.version_info < (3, 6))' 2>/dev/null; then
+    if python3 "$doc/vectors/check.py" --impl "$root$prefix/bin/materia-query$suffix" --precision "$precision" \
+           --only '^matte default$' >"$tmp/log" 2>&1 && grep -q '^PASS' "$tmp/log" && ! grep -q '^FAIL' "$tmp/log"; then
+        pass "the installed vectors/check.py passes the installed materia-query$suffix (matte default)"
+    else
+        fail "the installed vectors/check.py against materia-query$suffix:"; cat "$tmp/log"
+    fi
+else
+    echo "SKIP install: python3 (3.6 or later) not installed: the installed vectors/check.py was not run"
+fi
 if readelf -d "$root$prefix/lib/lib$name.so" 2>/dev/null | grep -q "SONAME.*\[lib$name.so.0\]"; then
     pass "lib$name.so has the soname lib$name.so.0"
 else
@@ -69,13 +97,23 @@ if $cc -std=c99 $cflags "$tmp/prog.c" -o "$tmp/prog" $libs >"$tmp/log" 2>&1 &&
 else
     fail "the program against lib$name.so: \"${got:-}\", want \"$want\""; cat "$tmp/log"
 fi
-slibs=$(echo " $slibs " | sed "s| -l$name | -Wl,-Bstatic -l$name -Wl,-Bdynamic |")
+# the shared program needs lib$name.so.0; the static one must not (the
+# archive and the shared library sit side by side: materia.pc.in says how
+# the flags choose)
+needed() { readelf -d "$1" 2>/dev/null | grep -c "NEEDED.*\[lib$name\.so"; }
+if [ -x "$tmp/prog" ] && [ "$(needed "$tmp/prog")" = 1 ]; then
+    pass "pkg-config --libs $name links lib$name.so.0 (NEEDED)"
+else
+    fail "pkg-config --libs $name: the program does not need lib$name.so.0"
+fi
 # shellcheck disable=SC2086
 if $cc -std=c99 $cflags "$tmp/prog.c" -o "$tmp/prog-static" $slibs >"$tmp/log" 2>&1 &&
-   got=$("$tmp/prog-static") && [ "$got" = "$want" ]; then
-    pass "a program built with pkg-config --static --libs $name runs with lib$name.a: $got"
+   got=$(env -u LD_LIBRARY_PATH "$tmp/prog-static") && [ "$got" = "$want" ] &&
+   [ "$(needed "$tmp/prog-static")" = 0 ]; then
+    pass "a program built with pkg-config --static --libs $name links lib$name.a, not the shared library: $got"
 else
-    fail "the program against lib$name.a: \"${got:-}\", want \"$want\""; cat "$tmp/log"
+    fail "the program built with pkg-config --static --libs $name ($slibs): \"${got:-}\", want \"$want\" without lib$name.so"
+    readelf -d "$tmp/prog-static" 2>/dev/null | grep NEEDED; cat "$tmp/log"
 fi
 
 if $make --no-print-directory uninstall DESTDIR="$root" PREFIX=$prefix BUILD="$build" PRECISION="$precision" \

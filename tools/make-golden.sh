@@ -9,6 +9,7 @@
 # scene reads a MERL table of the plastic in golden/plastic-merl.txt, made
 # by materia-merl first (33 MB: made in a temporary directory, not kept).
 # usage: tools/make-golden.sh BUILD_DIR [SPP]    (make golden)
+# GOLDEN_ONLY="NAME ...": those scenes alone (a new material's, say).
 set -eu
 build=${1:-build/float}
 spp=${2:-4096}
@@ -20,6 +21,7 @@ cp golden/scenes/*.pbrt "$tmp/"
 "$build/bin/materia-merl" --out "$tmp/plastic.merl" - < golden/plastic-merl.txt
 for scene in golden/scenes/*.pbrt; do
     name=$(basename "$scene" .pbrt)
+    case " ${GOLDEN_ONLY:-$name} " in *" $name "*) ;; *) continue ;; esac
     if grep -q '"dipolesubsurface"' "$scene"; then
         # the dipole scenes: the points deposited once into the scene's points
         # file, then RENDERS renders with seeds 1..RENDERS at the test's sample

@@ -34,11 +34,25 @@ static int usage_to(FILE *f)
     fprintf(f, "usage: %s scene.pbrt --renders K --spp N -o mean.exr --variance var.exr --stats stats.txt\n"
                "       [--mode pbrt-v2|corrected] [--threads N]\n"
                "       %s scene.pbrt --points points.txt [--seed S]\n"
-               "       %s --help | --version\n"
-               "K >= 2 renders with seeds 1..K: their mean, the variance of the mean, and each render's\n"
-               "block statistics; or the scene's dipole irradiance points. Exit status 0 written,\n"
-               "1 failure (nothing written), 2 wrong command line.\n",
+               "       %s --help | --version\n",
             prog, prog, prog);
+    if (f == stdout) /* --help: every option with its default */
+        fputs("K >= 2 renders with seeds 1..K: their mean, the variance of the mean, and each render's\n"
+              "block statistics (the golden images of the dipole scenes, make golden); or the scene's\n"
+              "dipole irradiance points.\n"
+              "  --renders K        renders, 2 to 4096 (required)\n"
+              "  --spp N            samples per pixel of each render, 1 to 16777216 (required)\n"
+              "  -o FILE            their mean, an image (.exr, .png, .pfm; required)\n"
+              "  --variance FILE    the variance of the mean (required)\n"
+              "  --stats FILE       each render's block statistics, one line a render (required)\n"
+              "  --mode M           pbrt-v2 (the default) or corrected\n"
+              "  --threads N        1 to 4096 (default: one per online processor)\n"
+              "  --points FILE      instead: the irradiance points of the scene's dipole integrator\n"
+              "  --seed S           with --points: the points' seed, 0 to 4e9 (default 1)\n"
+              "  --help, -h         this text;  --version  materia's version and precision\n"
+              "Exit status: 0 written, 1 failure (the message on standard error, nothing written),\n"
+              "2 wrong command line.\n",
+              f);
     return f == stdout ? 0 : 2;
 }
 

@@ -37,13 +37,27 @@ static int usage(FILE *f)
             "usage: %s A B [--block N] [--var-a VA] [--var-b VB] [--alpha P]\n"
             "       [--heatmap OUT.png] [--heatmap-max V] [--heatmap-z]\n"
             "       [--fail-above X] [--fail-ztest]\n"
-            "A: the image under test, B: the reference (EXR, PNG or PFM). Prints pbrt-v2's\n"
-            "noise metric (block means, |a - b| / (b + 0.01)), RMSE, relative MSE, the\n"
-            "largest difference, and the z-test when a variance image is given.\n"
-            "Exit status 0 compared, 1 failure (an unreadable file, over --fail-above, the\n"
-            "z-test failed with --fail-ztest), 2 wrong command line.\n"
             "       %s --help | --version\n",
             prog, prog);
+    if (f == stdout) /* --help: every option with its default */
+        fputs("A: the image under test, B: the reference (EXR, PNG or PFM). Prints pbrt-v2's noise\n"
+              "metric (block means of |a - b| / (b + 0.01)), RMSE, relative MSE, the largest\n"
+              "difference, and the z-test when a variance image is given.\n"
+              "  --block N          block side of the noise metric and the z-test, 1 to 4096 (default 4)\n"
+              "  --var-a VA         the variance image of A (default: none)\n"
+              "  --var-b VB         the variance image of B (default: none); with either, the z-test\n"
+              "  --alpha P          the z-test's level over all blocks, 1e-12 to 0.5 (default 0.01)\n"
+              "  --heatmap OUT.png  a heat map of the blocks' relative difference (default: none)\n"
+              "  --heatmap-max V    the heat map's top value (default 0.1, or the z-test's threshold\n"
+              "                     with --heatmap-z)\n"
+              "  --heatmap-z        the heat map shows the blocks' z values (needs a variance image;\n"
+              "                     default: the relative difference)\n"
+              "  --fail-above X     exit 1 when the noise metric's mean is above X (default: never)\n"
+              "  --fail-ztest       exit 1 when the z-test fails (default: report only)\n"
+              "  --help, -h         this text;  --version  materia's version and precision\n"
+              "Exit status: 0 compared, 1 failure (an unreadable file, over --fail-above, the z-test\n"
+              "failed with --fail-ztest), 2 wrong command line.\n",
+              f);
     return f == stdout ? 0 : 2;
 }
 

@@ -352,11 +352,36 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: %s [--impl 'COMMAND'] [--against 'COMMAND'] [--mode pbrt-v2|corrected] [--samples N]\n"
             "       [--timeout SECONDS] [--raw PREFIX] --wo THETA PHI -o lobe.png STATEMENTS...\n"
-            "       %s --help | --version\n"
-            "THETA and PHI in degrees; the statements (pbrt-v2 scene text, joined with spaces) make the material\n"
-            "  --samples N   samples for the histogram, 0 to 1e8 (default 200000; 0: no samples drawn, the\n"
-            "                histogram panels stay empty)\n",
+            "       %s --help | --version\n",
             prog, prog);
+}
+
+/* --help: every option with its default, and the exit statuses */
+static void help(void)
+{
+    usage(stdout);
+    fputs("A picture of a material's scattering at one incident direction: f cos and the pdf over the\n"
+          "whole sphere, a histogram of sampled directions on the pdf's scale, and a polar plot of the\n"
+          "plane of incidence. The statements (pbrt-v2 scene text, the arguments joined with spaces,\n"
+          "on one line) make the material, as in a query session (docs/PROTOCOL.md).\n"
+          "  --wo THETA PHI      the incident direction, in degrees: THETA 0 to 180 from the normal\n"
+          "                      (+z), PHI -360 to 360 (required)\n"
+          "  -o FILE.png         the picture (required); written to a temporary file and renamed\n"
+          "  --impl 'COMMAND'    draw this program's answers (any program speaking the query\n"
+          "                      protocol) instead of materia's (default: materia, in-process)\n"
+          "  --against 'COMMAND' a second row from this program and a third with their difference\n"
+          "                      (default: none)\n"
+          "  --mode M            corrected (the default) or pbrt-v2. corrected, as materia-conformance\n"
+          "                      --impl: a renderer is compared with the physics; every other tool,\n"
+          "                      and the library, default to pbrt-v2\n"
+          "  --samples N         samples for the histogram, 0 to 1e8 (default 200000; 0: no samples\n"
+          "                      drawn, the histogram panels stay empty)\n"
+          "  --timeout SECONDS   the longest wait for a child's answer, 1 to 3600 (default 30)\n"
+          "  --raw PREFIX        also each map as PFM: PREFIX-ROW-WHAT.pfm (default: none)\n"
+          "  --help, -h          this text;  --version  materia's version and precision\n"
+          "Exit status: 0 drawn and written, 1 error (a child that fails or answers wrongly, an\n"
+          "unwritable output: the message on standard error, nothing written), 2 wrong command line.\n",
+          stdout);
 }
 
 int main(int argc, char **argv)
@@ -406,7 +431,7 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "-o") && i + 1 < argc)
             out = argv[++i];
         else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
+            help();
             return 0;
         } else if (!strcmp(a, "--version")) {
             printf("materia-lobe (materia) %s, %s\n", mt_version(), mt_precision());

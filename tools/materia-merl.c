@@ -28,17 +28,18 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: materia-merl --out FILE [--mode pbrt-v2|corrected] [--at corner|centre]\n"
             "                    [--dir DIR] STATEMENT...\n"
+            "       materia-merl --help | --version\n"
             "Writes the MERL table (MERL's binary format, pbrt-v2's 90 x 90 x 180 half-angle grid)\n"
             "of the material that the pbrt-v2 statements leave current, evaluated at the standard\n"
             "shading point (n = +z, dpdu = +x). The statement arguments are joined by newlines;\n"
             "a single \"-\" reads them from standard input.\n"
-            "  --out FILE   the file to write (through a temporary file next to it)\n"
+            "  --out FILE   the file to write (required; through a temporary file next to it)\n"
             "  --mode M     pbrt-v2 (the default) or corrected\n"
             "  --at P       where each entry is sampled in its bin: corner (MERL's grid points,\n"
             "               the default) or centre (half the lookup error; a table of a MERL\n"
             "               material reproduces its table)\n"
             "  --dir DIR    the directory relative file names resolve against (default: .)\n"
-            "       materia-merl --help | --version\n"
+            "  --help, -h   this text;  --version  materia's version and precision\n"
             "Exit status: 0 written, 1 error (message on standard error), 2 bad usage.\n");
 }
 
@@ -83,7 +84,10 @@ int main(int argc, char **argv)
     mt_error err;
     for (i = 1; i < argc && ok; ++i) {
         if (!strcmp(argv[i], "--version")) {
-            printf("materia-merl (materia) %s, %s\n", mt_version(), mt_precision());
+            /* (mt_image_formats also links every format: an imagemap
+             * texture of the statements reads them) */
+            printf("materia-merl (materia) %s, %s, image formats %s\n", mt_version(), mt_precision(),
+                   mt_image_formats());
             free(text);
             return 0;
         } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {

@@ -82,6 +82,28 @@ static char *next_line(reader *r, int *oom)
     }
 }
 
+/* --list materials|textures: the registered kinds, one a line, each
+ * followed by what a script may need to tell them apart. */
+static int list(const char *what)
+{
+    int i;
+    if (!strcmp(what, "materials")) {
+        for (i = 0; i < mt_material_kind_count(); ++i) {
+            const mt_material_kind *k = mt_material_kind_at(i);
+            printf("%s%s\n", mt_material_kind_name(k), mt_material_kind_has_bssrdf(k) ? " bssrdf" : "");
+        }
+    } else if (!strcmp(what, "textures")) {
+        for (i = 0; i < mt_texture_kind_count(); ++i) {
+            const mt_texture_kind *k = mt_texture_kind_at(i);
+            printf("%s%s\n", mt_texture_kind_name(k), mt_texture_kind_has_float(k) ? " float" : "");
+        }
+    } else {
+        fprintf(stderr, "materia-query: --list takes materials or textures, not \"%s\"\n", what);
+        return 2;
+    }
+    return fflush(stdout) == 0 ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
     const char *dir = NULL;
@@ -96,15 +118,30 @@ int main(int argc, char **argv)
             dir = argv[++i];
             if (!tool_directory("materia-query", "--dir", dir)) return 1;
         }
-        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+        else if (!strcmp(argv[i], "--list")) {
+            if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
+            return list(argv[i + 1]);
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             printf("usage: materia-query [--dir DIR] < queries\n"
+                   "       materia-query --list materials|textures\n"
                    "       materia-query --help | --version\n"
-                   "Answers one line per query on standard output (see README.md, \"The query tool\");\n"
-                   "relative file names resolve against DIR (default: the current directory).\n"
-                   "Warnings go to standard error as \"warning FILE:LINE: MESSAGE\".\n");
+                   "Answers one line per query on standard output (docs/PROTOCOL.md; README.md, \"The\n"
+                   "query tool\"); a bad line is answered \"error MESSAGE\" and the session goes on.\n"
+                   "Warnings go to standard error as \"warning FILE:LINE: MESSAGE\". The mode is pbrt-v2\n"
+                   "until a \"mode corrected\" line.\n"
+                   "  --dir DIR     relative file names resolve against DIR (default: the current directory)\n"
+                   "  --list WHAT   instead of a session: the registered material kinds (\"bssrdf\" after\n"
+                   "                those with one) or texture classes (\"float\" after those with a float\n"
+                   "                variant), one a line\n"
+                   "  --help, -h    this text;  --version  materia's version, precision and image formats\n"
+                   "Exit status: 0 at the end of the input, 1 error of the tool itself (out of memory,\n"
+                   "output failed), 2 wrong command line.\n");
             return 0;
         } else if (!strcmp(argv[i], "--version")) {
-            printf("materia-query (materia) %s, %s\n", mt_version(), mt_precision());
+            /* (mt_image_formats also links every format into the tool: imagemap
+             * textures of a session read them) */
+            printf("materia-query (materia) %s, %s, image formats %s\n", mt_version(), mt_precision(),
+                   mt_image_formats());
             return 0;
         } else {
             fprintf(stderr, "materia-query: unknown argument \"%s\" (usage: materia-query [--dir DIR] < queries)\n",

@@ -27,6 +27,26 @@ static const char *usage =
     "                      [--seed S] [--mode pbrt-v2|corrected] [--quiet] [--variance var.exr]\n"
     "       materia-render --help | --version\n";
 
+/* --help: every option with its default, and the exit statuses */
+static const char *help =
+    "Renders a pbrt-v2 scene file with materia's materials (docs/RENDERER.md); the image is\n"
+    "the same bit for bit on any number of threads.\n"
+    "  -o FILE          the image: .exr (float RGB, with the spp, seed and mode in its header),\n"
+    "                   .png (8-bit sRGB) or .pfm (default: the Film's \"filename\", pbrt-v2's\n"
+    "                   default pbrt.exr, relative to the current directory)\n"
+    "  --variance FILE  also the estimated variance of each pixel's value (default: none)\n"
+    "  --spp N          samples per pixel, 1 to 16777216 (default: the scene's Sampler's)\n"
+    "  --threads N      1 to 1024 (default: one per online processor)\n"
+    "  --seed S         the sample pattern, 0 to 2^63 - 1 (default 0)\n"
+    "  --mode M         pbrt-v2 (the default: pbrt-v2's answers, errata included) or corrected\n"
+    "  --quiet          no progress line (shown only on a terminal anyway), no summary, no\n"
+    "                   notice that the scene's Sampler is replaced (default: off)\n"
+    "  --help, -h       this text;  --version  materia's version and precision\n"
+    "Output paths are checked before the render; the image is written to a temporary file\n"
+    "and renamed. Warnings (unused parameters) go to standard error as FILE:LINE: warning.\n"
+    "Exit status: 0 rendered and written, 1 error (the scene's file:line and the message on\n"
+    "standard error; nothing written), 2 wrong command line.\n";
+
 static int quiet;
 
 static void warn(void *ctx, const char *file, int line, const char *msg)
@@ -102,6 +122,7 @@ int main(int argc, char **argv)
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             fputs(usage, stdout);
+            fputs(help, stdout);
             return 0;
         } else if (strcmp(a, "--version") == 0) {
             printf("materia-render (materia) %s, %s\n", mt_version(), mt_precision());

@@ -24,12 +24,19 @@ static int usage(FILE *f)
     fprintf(f,
             "usage: %s -o SHEET.png [--columns N] [--exposure STOPS] [--font-scale K]\n"
             "       LABEL=IMAGE ... (or IMAGE: labelled with its file name)\n"
-            "       %s --help | --version\n"
-            "  --columns N      images per row, 0 to 4096 (default 0: the smallest N with N x N\n"
-            "                   at least the number of images)\n"
-            "Exit status 0 written, 1 failure (an image unreadable, the sheet not written),\n"
-            "2 wrong command line.\n",
+            "       %s --help | --version\n",
             prog, prog);
+    if (f == stdout) /* --help: every option with its default */
+        fputs("A labelled contact sheet of images (EXR, PNG or PFM), as make demo makes one.\n"
+              "  -o SHEET.png       the sheet (required; .png, .exr or .pfm)\n"
+              "  --columns N        images per row, 0 to 4096 (default 0: the smallest N with N x N\n"
+              "                     at least the number of images)\n"
+              "  --exposure STOPS   pixel values times 2^STOPS, -64 to 64 (default 0)\n"
+              "  --font-scale K     image pixels per font pixel of the labels, 1 to 16 (default 1)\n"
+              "  --help, -h         this text;  --version  materia's version and precision\n"
+              "Exit status: 0 written, 1 failure (an image unreadable, the sheet not written),\n"
+              "2 wrong command line.\n",
+              f);
     return f == stdout ? 0 : 2;
 }
 

@@ -17,6 +17,8 @@ rm -rf "$data"
 csv=$OUT/1-precision.csv
 nconf=$(awk 'END { print NR - 1 }' "$csv")
 nmat=$(awk -F, 'NR > 1 { m[$2] = 1 } END { n = 0; for (k in m) n++; print n }' "$csv")
+# the material kinds, in registry order, for the plot's legend
+mats=$("$MT_BIN/materia-query" --list materials | awk '{ printf "%s%s", sep, $1; sep = " " }')
 # columns: 2 material, 3 configuration, 13 the 99th percentile over all
 # values, 14 double against long double, 21 the time ratio
 stats=$(awk -F, 'NR > 1 {
@@ -44,10 +46,10 @@ set xrange [0.05:*]
 set key outside right top font ',9'
 set rmargin 16
 set style data points
-mats = 'matte plastic glass mirror metal shinymetal substrate translucent uber mix measured subsurface kdsubsurface'
+mats = '$mats'
 xv(x) = x < 0.1 ? 0.1 : x
 set label 'exact (0 ULPs)' at 0.1, graph 0.06 center font ',8'
-plot for [i = 1:13] '1-precision.csv' using (strcol(2) eq word(mats, i) ? xv(column(13)) : NaN):(column(21)) \\
+plot for [i = 1:words(mats)] '1-precision.csv' using (strcol(2) eq word(mats, i) ? xv(column(13)) : NaN):(column(21)) \\
          every ::1 title word(mats, i) with points lc (i % 8 + 1) pt (4 + 2 * ((i - 1) / 8)) ps 1.3, \\
      1 with lines dt 2 lc rgb '#888888' title 'equal time'
 ") || status=1

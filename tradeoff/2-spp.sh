@@ -45,11 +45,12 @@ if [ "$QUICK" = 1 ]; then
     DIPOLE=${SPP_DIPOLE:-none}
     REAL=${SPP_REAL:-none}
 else
-    SCENES=${SPP_SCENES:-"matte plastic glass mirror metal shinymetal substrate translucent uber mix measured"}
+    # the material kinds without a BSSRDF (the path-traced golden scenes)
+    SCENES=${SPP_SCENES:-$("$MT_BIN/materia-query" --list materials | awk '$2 != "bssrdf" { printf "%s%s", sep, $1; sep = " " }')}
     SPPS=${SPP_LIST:-"1 4 16 64 256 1024 4096"}
     # The dipole scenes' lights take 64 and 16 samples per camera sample: to
     # 64 spp they cost what the others do to 4096.
-    DIPOLE=${SPP_DIPOLE:-"subsurface kdsubsurface"}
+    DIPOLE=${SPP_DIPOLE:-$("$MT_BIN/materia-query" --list materials | awk '$2 == "bssrdf" { printf "%s%s", sep, $1; sep = " " }')}
     REAL=${SPP_REAL:-"real-killeroo-simple real-metal-teapot real-bunny-measured"}
 fi
 DIPOLESPPS=${SPP_DIPOLE_LIST:-"1 4 16 64"}

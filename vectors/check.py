@@ -4,8 +4,15 @@ the published conformance vectors: sends each selected configuration's
 statements, points and queries (vectors/README.md, "The session") and
 compares the answers with materia's, as the README's tolerances say.
 
-    python3 vectors/check.py --impl 'COMMAND' [--only REGEX] [--precision float|double]
-                             [--files eval,sample,...] [--tolerance T] [--data DIR]
+    python3 vectors/check.py --impl 'COMMAND' [--only REGEX] [--skip REGEX]
+                             [--precision float|double] [--files eval,sample,...]
+                             [--tolerance T] [--data DIR]
+
+REGEX is a POSIX extended regular expression, the dialect of every --only of
+materia's tools (materia-conformance's too): a Python-only construct (a
+lookahead "(?...", "\\d", a lazy "*?") is a usage error, not a silent
+difference. --only selects the configurations whose name matches, --skip
+leaves out those whose name matches.
 
 Prints one line per mode and file, "PASS ..." or "FAIL ..." with the worst
 row (query, expected, got), and exits 0 when everything passed, 1 when a
@@ -65,21 +72,53 @@ def difference(got, want):
     return worst
 
 
+# POSIX character classes, inside a bracket expression, as Python writes them
+ERE_CLASSES = {"alpha": "a-zA-Z", "digit": "0-9", "alnum": "a-zA-Z0-9", "upper": "A-Z", "lower": "a-z",
+               "space": " \\t\\n\\r\\f\\v", "blank": " \\t", "xdigit": "0-9A-Fa-f",
+               "punct": re.escape("!\"#$%&'()*+,-./:;<=>?@[\\]^_`{|}~")}
+
+
+def ere(pattern, option):
+    """The Python regular expression of a POSIX extended one, or a usage
+    error naming what is not ERE: the same dialect as regcomp(REG_EXTENDED),
+    which materia-conformance uses (whether a name matches does not depend
+    on ERE's leftmost-longest rule)."""
+    bad = re.search(r"\(\?|\\[dDwWsSbBAZzGpPNuUx0-9]|[*+?}][?+]", pattern)
+    if bad:
+        raise ValueError("%s: %r is not a POSIX extended regular expression (%r at %d: "
+                         "lookaheads, \\d-style escapes, back-references and lazy quantifiers are "
+                         "Python's; use --only and --skip)" % (option, pattern, bad.group(0), bad.start()))
+    py = re.sub(r"\[:([a-z]+):\]", lambda m: ERE_CLASSES.get(m.group(1), m.group(0)), pattern)
+    try:
+        return re.compile(py)
+    except re.error as e:
+        raise ValueError("%s: %r is not a regular expression: %s" % (option, pattern, e))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--impl", required=True, help="the command line of the program to check")
-    ap.add_argument("--only", default="", help="configurations whose name matches this regular expression")
+    ap.add_argument("--only", default="", help="configurations whose name matches this POSIX extended "
+                    "regular expression (default: all)")
+    ap.add_argument("--skip", default=None, help="leave out configurations whose name matches this POSIX "
+                    "extended regular expression (default: none)")
     ap.add_argument("--precision", default="double", choices=["float", "double"])
     ap.add_argument("--files", default="eval,sample", help="which query files (default eval,sample)")
     ap.add_argument("--tolerance", type=float, default=1e-6)
     ap.add_argument("--data", default=os.path.join(ROOT, "data"),
                     help="the directory of the files the statements name as @DATA@ (default vectors/data)")
     a = ap.parse_args()
+    try:
+        only = ere(a.only, "--only")
+        skip = ere(a.skip, "--skip") if a.skip is not None else None
+    except ValueError as e:
+        sys.stderr.write("check.py: %s\n" % e)
+        return 2
     data = os.path.abspath(a.data)
     with open(os.path.join(ROOT, "configs.tsv"), newline="") as f:
         configs = {r["id"]: r for r in csv.DictReader(f, delimiter="\t")}
     points = {r[0]: r for r in read_csv(os.path.join(ROOT, "points.csv"))}
-    chosen = {c for c, r in configs.items() if re.search(a.only, r["name"])}
+    chosen = {c for c, r in configs.items() if only.search(r["name"]) and not (skip and skip.search(r["name"]))}
     selected = len(chosen)
     for c in sorted(chosen, key=int):
         # a configuration whose data file is missing (the MERL table is not
@@ -95,7 +134,8 @@ def main():
     files = a.files.split(",")
     if not chosen or any(f not in INPUTS for f in files):
         sys.stderr.write("check.py: %s\n" % ("--files takes " + ",".join(INPUTS) if chosen
-                                             else "--only %r selects no configuration" % a.only if not selected
+                                             else "--only %r%s selects no configuration" % (a.only, " --skip %r" % a.skip if a.skip else "")
+                                             if not selected
                                              else "every selected configuration was skipped"))
         return 2
     failed = 0

@@ -73,6 +73,19 @@ MT_API mt_status mt_image_read(const char *path, mt_image *img, mt_error *err);
 MT_API mt_status mt_image_read_mode(const char *path, mt_mode mode, mt_image *img,
                                     mt_error *err);
 
+/* The image formats this build of materia reads and writes, by extension:
+ * "exr png pfm" (a build made with NO_EXR=1 or NO_PNG=1 lacks that word).
+ * Reading or writing a format the build lacks is MT_ERR_UNSUPPORTED naming
+ * the file and the format.
+ * Linking: imagemap textures made from statements (mt_texture_create, a
+ * scene's or a query's Texture) read the formats a static program links for
+ * another reason; calling mt_image_formats, mt_image_read(_mode),
+ * mt_image_write or the renderer links them all. A program that reads no
+ * image thus links neither OpenEXR nor libpng; one that reads an .exr or
+ * .png texture from a statement without having linked the format gets an
+ * error naming the file and what to call. The shared library has them all. */
+MT_API const char *mt_image_formats(void);
+
 /* A string attribute for the file's header (EXR only; ignored elsewhere). */
 typedef struct mt_image_attr {
     const char *name, *value;

@@ -177,8 +177,45 @@ MT_API mt_material *mt_material_from_text(const char *text, struct mt_state *sta
 MT_API mt_material *mt_material_from_params(const char *type, const mt_param *params, int nparams,
                                             const struct mt_state *state, mt_error *err);
 
-/* The names of the 13 material types (a static array of static strings);
- * *count (may be NULL) receives their number. */
+/* ---- material kinds and the registry ----------------------------------------
+ * A kind is one of pbrt-v2's material types. The registry lists every kind
+ * once, in MT_MATERIAL_KINDS: X(name) declares the kind's object
+ * mt_<name>_material (defined in src/materials/<file>.c), and the registry's
+ * functions below iterate the same list. Creating by name (mt_material_create,
+ * mt_material_kind_find, a scene) links every kind into a static program;
+ * creating from a kind's object (mt_material_create_kind) links that kind and
+ * what it uses alone. The kind objects are static and constant: every
+ * function of this block may be called from any number of threads at once. */
+typedef struct mt_material_kind mt_material_kind;
+
+#define MT_MATERIAL_KINDS(X)                                                               \
+    X(matte) X(plastic) X(glass) X(mirror) X(metal) X(shinymetal) X(substrate)             \
+    X(translucent) X(uber) X(mix) X(measured) X(subsurface) X(kdsubsurface)
+
+#define MT_MATERIAL_KIND_DECLARE_(name) MT_API extern const mt_material_kind mt_##name##_material;
+MT_MATERIAL_KINDS(MT_MATERIAL_KIND_DECLARE_)
+
+/* As mt_material_create, for the kind k (e.g. &mt_plastic_material): a new
+ * reference (mt_material_destroy), or NULL with err filled (MT_ERR_INVALID
+ * for a NULL k or a parameter out of range). */
+MT_API mt_material *mt_material_create_kind(const mt_material_kind *k, const mt_transform *mtl2world,
+                                            const mt_texparams *tp, const mt_material_ctx *ctx,
+                                            mt_error *err);
+/* The kind's pbrt-v2 name ("plastic"), a static string; k must not be NULL. */
+MT_API const char *mt_material_kind_name(const mt_material_kind *k);
+/* 1 when the kind gives BSSRDF coefficients (mt_material_get_bssrdf): a
+ * renderer needs a subsurface integrator for it. */
+MT_API int mt_material_kind_has_bssrdf(const mt_material_kind *k);
+
+/* The registry: the number of kinds, the i-th (0 <= i < count, in
+ * MT_MATERIAL_KINDS order; NULL outside), and the kind of a pbrt-v2 name
+ * (NULL when there is none). */
+MT_API int mt_material_kind_count(void);
+MT_API const mt_material_kind *mt_material_kind_at(int i);
+MT_API const mt_material_kind *mt_material_kind_find(const char *name);
+
+/* The kinds' names in registry order (a static, NULL-terminated array of
+ * static strings); *count (may be NULL) receives their number. */
 MT_API const char *const *mt_material_types(int *count);
 
 #ifdef __cplusplus

@@ -135,8 +135,47 @@ MT_API mt_texture *mt_texture_from_text(const char *text, struct mt_state *state
 MT_API mt_texture *mt_texture_from_params(const char *class_name, int is_float, const mt_param *params,
                                           int nparams, const struct mt_state *state, mt_error *err);
 
-/* The class names (a static array of static strings), for help texts and
- * tests; *count (may be NULL) receives their number. */
+/* ---- texture kinds and the registry ------------------------------------------
+ * A kind is one of pbrt-v2's texture classes. The registry lists every kind
+ * once, in MT_TEXTURE_KINDS: X(name) declares the kind's object
+ * mt_<name>_texture (defined in src/textures/<name>.c), and the registry's
+ * functions below iterate the same list. Creating by name
+ * (mt_texture_create, mt_texture_kind_find, a Texture statement) links every
+ * kind into a static program, imagemap and its image reading included;
+ * creating from a kind's object (mt_texture_create_kind) links that kind and
+ * what it uses alone. The kind objects are static and constant: every
+ * function of this block may be called from any number of threads at once. */
+typedef struct mt_texture_kind mt_texture_kind;
+
+#define MT_TEXTURE_KINDS(X)                                                                \
+    X(constant) X(scale) X(mix) X(bilerp) X(imagemap) X(uv) X(checkerboard) X(dots) X(fbm)   \
+    X(wrinkled) X(windy) X(marble)
+
+#define MT_TEXTURE_KIND_DECLARE_(name) MT_API extern const mt_texture_kind mt_##name##_texture;
+MT_TEXTURE_KINDS(MT_TEXTURE_KIND_DECLARE_)
+
+/* As mt_texture_create, for the kind k (e.g. &mt_checkerboard_texture): a
+ * new reference (mt_texture_destroy), or NULL with err filled (MT_ERR_INVALID
+ * for a NULL k, a float variant the class does not have, a bad parameter). */
+MT_API mt_texture *mt_texture_create_kind(const mt_texture_kind *k, int is_float,
+                                          const mt_transform *tex2world, const mt_texparams *tp,
+                                          mt_error *err);
+/* The kind's pbrt-v2 class name ("checkerboard"), a static string; k must
+ * not be NULL. */
+MT_API const char *mt_texture_kind_name(const mt_texture_kind *k);
+/* 1 when pbrt-v2 has a float variant of the class (all but uv and marble). */
+MT_API int mt_texture_kind_has_float(const mt_texture_kind *k);
+
+/* The registry: the number of kinds, the i-th (0 <= i < count, in
+ * MT_TEXTURE_KINDS order; NULL outside), and the kind of a class name (NULL
+ * when there is none). */
+MT_API int mt_texture_kind_count(void);
+MT_API const mt_texture_kind *mt_texture_kind_at(int i);
+MT_API const mt_texture_kind *mt_texture_kind_find(const char *name);
+
+/* The class names in registry order (a static, NULL-terminated array of
+ * static strings), for help texts and tests; *count (may be NULL) receives
+ * their number. */
 MT_API const char *const *mt_texture_classes(int *count);
 
 #ifdef __cplusplus

@@ -63,8 +63,14 @@ static mt_rgb btdf_rho_hh(const mt_bxdf *b, int n, const mt_real *s1, const mt_r
     return r->ops->rho_hh(r, n, s1, s2);
 }
 
-static const mt_bxdf_ops brdf_to_btdf_ops = {"brdf_to_btdf", btdf_f, btdf_sample_f, btdf_pdf,
-                                             btdf_rho_hd, btdf_rho_hh};
+static const mt_bxdf_ops brdf_to_btdf_ops = {
+    .name = "brdf_to_btdf",
+    .f = btdf_f,
+    .sample_f = btdf_sample_f,
+    .pdf = btdf_pdf,
+    .rho_hd = btdf_rho_hd,
+    .rho_hh = btdf_rho_hh,
+};
 
 mt_bxdf *mt_brdf_to_btdf_create(mt_arena *a, mt_mode mode, mt_bxdf *brdf, mt_error *err)
 {

@@ -81,8 +81,13 @@ static mt_rgb fresnelblend_sample_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 *wi, m
 }
 
 static const mt_bxdf_ops fresnelblend_ops = {
-    "fresnelblend", fresnelblend_f, fresnelblend_sample_f, fresnelblend_pdf,
-    mt_bxdf_default_rho_hd, mt_bxdf_default_rho_hh};
+    .name = "fresnelblend",
+    .f = fresnelblend_f,
+    .sample_f = fresnelblend_sample_f,
+    .pdf = fresnelblend_pdf,
+    .rho_hd = mt_bxdf_default_rho_hd,
+    .rho_hh = mt_bxdf_default_rho_hh,
+};
 
 mt_bxdf *mt_fresnelblend_create(mt_arena *a, mt_mode mode, mt_rgb Rd, mt_rgb Rs,
                                 mt_distribution dist, mt_error *err)

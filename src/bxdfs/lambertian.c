@@ -38,8 +38,13 @@ static mt_rgb lambertian_rho_hh(const mt_bxdf *b, int n, const mt_real *s1, cons
 }
 
 static const mt_bxdf_ops lambertian_ops = {
-    "lambertian", lambertian_f, lambertian_sample_f, mt_bxdf_default_pdf,
-    lambertian_rho_hd, lambertian_rho_hh};
+    .name = "lambertian",
+    .f = lambertian_f,
+    .sample_f = lambertian_sample_f,
+    .pdf = mt_bxdf_default_pdf,
+    .rho_hd = lambertian_rho_hd,
+    .rho_hh = lambertian_rho_hh,
+};
 
 mt_bxdf *mt_lambertian_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_error *err)
 {

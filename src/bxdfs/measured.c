@@ -169,12 +169,22 @@ static mt_rgb halfangle_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
     return mt_rgb_make(c[0], c[1], c[2]);
 }
 
-static const mt_bxdf_ops irreg_ops = {"IrregIsotropicBRDF", irreg_f, mt_bxdf_default_sample_f,
-                                      mt_bxdf_default_pdf, mt_bxdf_default_rho_hd,
-                                      mt_bxdf_default_rho_hh};
-static const mt_bxdf_ops halfangle_ops = {"RegularHalfangleBRDF", halfangle_f,
-                                          mt_bxdf_default_sample_f, mt_bxdf_default_pdf,
-                                          mt_bxdf_default_rho_hd, mt_bxdf_default_rho_hh};
+static const mt_bxdf_ops irreg_ops = {
+    .name = "IrregIsotropicBRDF",
+    .f = irreg_f,
+    .sample_f = mt_bxdf_default_sample_f,
+    .pdf = mt_bxdf_default_pdf,
+    .rho_hd = mt_bxdf_default_rho_hd,
+    .rho_hh = mt_bxdf_default_rho_hh,
+};
+static const mt_bxdf_ops halfangle_ops = {
+    .name = "RegularHalfangleBRDF",
+    .f = halfangle_f,
+    .sample_f = mt_bxdf_default_sample_f,
+    .pdf = mt_bxdf_default_pdf,
+    .rho_hd = mt_bxdf_default_rho_hd,
+    .rho_hh = mt_bxdf_default_rho_hh,
+};
 
 int mt__bxdf_is_measured(const mt_bxdf *b)
 {

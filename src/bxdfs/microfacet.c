@@ -66,8 +66,13 @@ static mt_real microfacet_pdf(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
 }
 
 static const mt_bxdf_ops microfacet_ops = {
-    "microfacet", microfacet_f, microfacet_sample_f, microfacet_pdf,
-    mt_bxdf_default_rho_hd, mt_bxdf_default_rho_hh};
+    .name = "microfacet",
+    .f = microfacet_f,
+    .sample_f = microfacet_sample_f,
+    .pdf = microfacet_pdf,
+    .rho_hd = mt_bxdf_default_rho_hd,
+    .rho_hh = mt_bxdf_default_rho_hh,
+};
 
 mt_bxdf *mt_microfacet_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_fresnel fresnel,
                               mt_distribution dist, mt_error *err)

@@ -38,8 +38,13 @@ static mt_rgb orennayar_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
 }
 
 static const mt_bxdf_ops orennayar_ops = {
-    "orennayar", orennayar_f, mt_bxdf_default_sample_f, mt_bxdf_default_pdf,
-    mt_bxdf_default_rho_hd, mt_bxdf_default_rho_hh};
+    .name = "orennayar",
+    .f = orennayar_f,
+    .sample_f = mt_bxdf_default_sample_f,
+    .pdf = mt_bxdf_default_pdf,
+    .rho_hd = mt_bxdf_default_rho_hd,
+    .rho_hh = mt_bxdf_default_rho_hh,
+};
 
 mt_bxdf *mt_orennayar_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_real sigma_deg,
                              mt_error *err)

@@ -43,8 +43,14 @@ static mt_rgb scaled_rho_hh(const mt_bxdf *b, int n, const mt_real *s1, const mt
     return mt_rgb_mul(sc->s, sc->inner->ops->rho_hh(sc->inner, n, s1, s2));
 }
 
-static const mt_bxdf_ops scaled_ops = {"scaled", scaled_f, scaled_sample_f, scaled_pdf,
-                                       scaled_rho_hd, scaled_rho_hh};
+static const mt_bxdf_ops scaled_ops = {
+    .name = "scaled",
+    .f = scaled_f,
+    .sample_f = scaled_sample_f,
+    .pdf = scaled_pdf,
+    .rho_hd = scaled_rho_hd,
+    .rho_hh = scaled_rho_hh,
+};
 
 mt_bxdf *mt_scaled_bxdf_create(mt_arena *a, mt_mode mode, mt_bxdf *bxdf, mt_rgb scale,
                                mt_error *err)

@@ -81,12 +81,22 @@ static mt_rgb specular_transmission_sample_f(const mt_bxdf *b, mt_vec3 wo, mt_ve
 /* Reflectances of delta lobes: pbrt-v2's base-class estimators, which reduce
  * to the lobe's weight (the sample does not depend on the uniform numbers). */
 static const mt_bxdf_ops specular_reflection_ops = {
-    "specular_reflection", delta_f, specular_reflection_sample_f, delta_pdf,
-    mt_bxdf_default_rho_hd, mt_bxdf_default_rho_hh};
+    .name = "specular_reflection",
+    .f = delta_f,
+    .sample_f = specular_reflection_sample_f,
+    .pdf = delta_pdf,
+    .rho_hd = mt_bxdf_default_rho_hd,
+    .rho_hh = mt_bxdf_default_rho_hh,
+};
 
 static const mt_bxdf_ops specular_transmission_ops = {
-    "specular_transmission", delta_f, specular_transmission_sample_f, delta_pdf,
-    mt_bxdf_default_rho_hd, mt_bxdf_default_rho_hh};
+    .name = "specular_transmission",
+    .f = delta_f,
+    .sample_f = specular_transmission_sample_f,
+    .pdf = delta_pdf,
+    .rho_hd = mt_bxdf_default_rho_hd,
+    .rho_hh = mt_bxdf_default_rho_hh,
+};
 
 mt_bxdf *mt_specular_reflection_create(mt_arena *a, mt_mode mode, mt_rgb R, mt_fresnel fresnel,
                                        mt_error *err)

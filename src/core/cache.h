@@ -29,8 +29,9 @@ typedef struct mt__cache {
 } mt__cache;
 
 /* A static cache: static mt__cache c = MT__CACHE_INIT(retain, release); */
-#define MT__CACHE_INIT(retain, release)                                                     \
-    { PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER, NULL, (retain), (release) }
+#define MT__CACHE_INIT(retain_fn, release_fn)                                               \
+    { .lock = PTHREAD_MUTEX_INITIALIZER, .built = PTHREAD_COND_INITIALIZER, .head = NULL,   \
+      .retain = (retain_fn), .release = (release_fn) }
 
 /* Builds the value of a key; NULL with err filled when it cannot. */
 typedef void *(*mt__cache_build)(void *ctx, mt_error *err);

@@ -49,7 +49,7 @@ struct mt__kdgrid {
 /* Monotonic in x (a subtraction and a product by a positive constant, both
  * rounded, then floor), so a point inside [a, b] falls in a cell between
  * those of a and b, whatever the rounding; NaN goes to cell 0. */
-static int cell_of(const struct mt__kdgrid *g, int c, mt_real x)
+static int ball_cell_of(const struct mt__kdgrid *g, int c, mt_real x)
 {
     mt_real v = (x - g->lo[c]) * g->inv[c];
     if (!(v >= 0)) return 0;
@@ -169,16 +169,16 @@ mt_status mt__kdtree_index(mt__kdtree *t, mt_real max_d2, mt_error *err)
     /* counting sort of the nodes by cell, node order kept within a cell */
     for (v = 0; v < (uint32_t)t->n; ++v) {
         const mt_real *q = t->nodes[v].p;
-        size_t k = ((size_t)cell_of(g, 2, q[2]) * (size_t)g->dim[1] + (size_t)cell_of(g, 1, q[1])) *
-                       (size_t)g->dim[0] + (size_t)cell_of(g, 0, q[0]);
+        size_t k = ((size_t)ball_cell_of(g, 2, q[2]) * (size_t)g->dim[1] + (size_t)ball_cell_of(g, 1, q[1])) *
+                       (size_t)g->dim[0] + (size_t)ball_cell_of(g, 0, q[0]);
         g->start[k + 1]++;
     }
     for (i = 0; (size_t)i < cells; ++i) g->start[i + 1] += g->start[i];
     memcpy(fill, g->start, (cells + 1) * sizeof *fill);
     for (v = 0; v < (uint32_t)t->n; ++v) {
         const mt_real *q = t->nodes[v].p;
-        size_t k = ((size_t)cell_of(g, 2, q[2]) * (size_t)g->dim[1] + (size_t)cell_of(g, 1, q[1])) *
-                       (size_t)g->dim[0] + (size_t)cell_of(g, 0, q[0]);
+        size_t k = ((size_t)ball_cell_of(g, 2, q[2]) * (size_t)g->dim[1] + (size_t)ball_cell_of(g, 1, q[1])) *
+                       (size_t)g->dim[0] + (size_t)ball_cell_of(g, 0, q[0]);
         uint32_t at = fill[k]++;
         g->xyz[3 * at] = q[0];
         g->xyz[3 * at + 1] = q[1];
@@ -250,8 +250,8 @@ void mt__kdtree_ball(const mt__kdtree *t, const mt_real p[3], mt_real max_d2, in
         mt_real r = mt_sqrt(max_d2);
         for (c = 0; c < 3; ++c) {
             mt_real m = r * (mt_real)1.001 + (mt_fabs(p[c]) + r) * (mt_real)1e-6;
-            lo[c] = cell_of(g, c, p[c] - m);
-            hi[c] = cell_of(g, c, p[c] + m);
+            lo[c] = ball_cell_of(g, c, p[c] - m);
+            hi[c] = ball_cell_of(g, c, p[c] + m);
         }
     }
     for (z = lo[2]; z <= hi[2]; ++z)

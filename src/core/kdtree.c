@@ -8,12 +8,12 @@
 #include "core/kdtree.h"
 #include "core/alloc.h"
 
-typedef struct builder {
+typedef struct kd_builder {
     mt__kdtree *t;
     const mt_real *pts;
     int32_t *idx;
     uint32_t next_free;
-} builder;
+} kd_builder;
 
 /* pbrt-v2 CompareNode: by the coordinate on axis, then by input position. */
 static int less(const mt_real *pts, int axis, int32_t a, int32_t b)
@@ -93,7 +93,7 @@ static void set_point(mt__kdnode *nd, const mt_real *pts, int32_t item)
 }
 
 /* pbrt-v2 KdTree::recursiveBuild for the points idx[start, end). */
-static void build(builder *b, uint32_t num, int start, int end)
+static void build(kd_builder *b, uint32_t num, int start, int end)
 {
     mt__kdnode *nd = &b->t->nodes[num];
     mt_real lo[3], hi[3];
@@ -135,7 +135,7 @@ static void build(builder *b, uint32_t num, int start, int end)
 
 mt_status mt__kdtree_build(mt__kdtree *t, const mt_real *points, int n, mt_error *err)
 {
-    builder b;
+    kd_builder b;
     int i;
     t->nodes = NULL;
     t->n = 0;

@@ -22,6 +22,7 @@
 #include <string.h>
 #include "core/alloc.h"
 #include "core/cache.h"
+#include "image/formats.h"
 #include "image/mipmap_impl.h"
 
 /* What a pyramid is made from: the cache key's contents. */
@@ -54,13 +55,15 @@ static mt_real *convert_texels(const mt_image *img, mt_real scale, mt_real gamma
 }
 
 /* The cache's builder: reads the file as the mode's textures see it. */
-static void *load(void *ctx, mt_error *err)
+static void *load_pyramid(void *ctx, mt_error *err)
 {
     const texinfo *ti = ctx;
     mt_image img;
     mt_real *texels;
     mt_mipmap *m;
-    if (mt_image_read_mode(ti->path, ti->mode, &img, err) != MT_OK) return NULL;
+    /* through the formats the program links (image/formats.h): making
+     * textures from statements does not link OpenEXR and libpng */
+    if (mt__image_read_linked(ti->path, ti->mode, &img, err) != MT_OK) return NULL;
     texels = convert_texels(&img, ti->scale, ti->gamma, ti->float_texture);
     if (!texels) {
         mt_image_destroy(&img);
@@ -76,7 +79,7 @@ static void *load(void *ctx, mt_error *err)
 
 static void destroy(void *m) { mt_mipmap_destroy(m); }
 
-static mt__cache cache = MT__CACHE_INIT(NULL, destroy);
+static mt__cache mipmap_cache = MT__CACHE_INIT(NULL, destroy);
 
 /* The key: every field but the path in a fixed format (numbers as exact
  * hexadecimal floats; -0 as 0, since the key compares values as pbrt-v2's
@@ -136,11 +139,11 @@ mt_mipmap *mt_mipmap_cache_get(const char *path, int trilinear, mt_real maxaniso
         mt_error_set(err, MT_ERR_NOMEM, "%s: out of memory", path);
         return NULL;
     }
-    m = mt__cache_get(&cache, key, path, load, &ti, err);
+    m = mt__cache_get(&mipmap_cache, key, path, load_pyramid, &ti, err);
     mt__free(key);
     return m;
 }
 
-int mt_mipmap_cache_size(void) { return mt__cache_size(&cache); }
+int mt_mipmap_cache_size(void) { return mt__cache_size(&mipmap_cache); }
 
-void mt_mipmap_cache_clear(void) { mt__cache_clear(&cache); }
+void mt_mipmap_cache_clear(void) { mt__cache_clear(&mipmap_cache); }

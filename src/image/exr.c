@@ -38,6 +38,9 @@
 #include <unistd.h>
 #include "core/alloc.h"
 #include "image/imageio.h"
+#include "image/formats.h"
+
+#if MATERIA_HAVE_EXR
 #include "image/openexr.h"
 
 /* The stream behind a context: our own file descriptor (so that a truncated
@@ -735,3 +738,23 @@ mt_status mt__exr_write(const char *path, const mt_image *img, const mt_image_at
     }
     return mt__tmpfile_commit(&tmp, path, err);
 }
+
+/* mt_image_write's EXR: float pixels, ZIP, scanlines */
+static mt_status write_default(const char *path, const mt_image *img, const mt_image_attr *attrs, int nattrs,
+                               mt_error *err)
+{
+    mt__exr_options o;
+    mt__exr_default_options(&o);
+    return mt__exr_write(path, img, attrs, nattrs, &o, err);
+}
+#endif
+
+const mt__image_format mt__exr_format = {
+    .ext = ".exr",
+    .name = "OpenEXR",
+    .omit = "make NO_EXR=1",
+#if MATERIA_HAVE_EXR
+    .read = mt__exr_read,
+    .write = write_default,
+#endif
+};

@@ -1,7 +1,7 @@
 /*
- * Float images: allocation, the format dispatch by file extension, the sRGB
- * transfer function, and the temporary-file-then-rename protocol of the
- * writers (an error never leaves a partial file where the caller asked for
+ * Float images: allocation, the sRGB transfer function, and the
+ * temporary-file-then-rename protocol of the writers (the format dispatch
+ * by file extension is formats.c's) (an error never leaves a partial file where the caller asked for
  * one, and a reader never sees one half written).
  */
 #include <errno.h>
@@ -59,111 +59,6 @@ void mt_image_destroy(mt_image *img)
     mt__free(img->data);
     img->data = NULL;
     img->width = img->height = img->channels = 0;
-}
-
-typedef enum { FMT_NONE, FMT_EXR, FMT_PNG, FMT_PFM } image_format;
-
-static int ieq(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++) {
-        char x = *a, y = *b;
-        if (x >= 'A' && x <= 'Z') x = (char)(x - 'A' + 'a');
-        if (y >= 'A' && y <= 'Z') y = (char)(y - 'A' + 'a');
-        if (x != y) return 0;
-    }
-    return *a == *b;
-}
-
-static image_format format_of(const char *path)
-{
-    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    if (!dot || (slash && dot < slash)) return FMT_NONE;
-    if (ieq(dot, ".exr")) return FMT_EXR;
-    if (ieq(dot, ".png")) return FMT_PNG;
-    if (ieq(dot, ".pfm")) return FMT_PFM;
-    return FMT_NONE;
-}
-
-mt_status mt_image_read(const char *path, mt_image *img, mt_error *err)
-{
-    mt_error_clear(err);
-    return mt_image_read_mode(path, MT_MODE_CORRECTED, img, err);
-}
-
-mt_status mt_image_read_mode(const char *path, mt_mode mode, mt_image *img, mt_error *err)
-{
-    mt_status st;
-    mt_error_clear(err);
-    if (!img) return mt_error_set(err, MT_ERR_INVALID, "mt_image_read: no image");
-    img->width = img->height = img->channels = 0;
-    img->data = NULL;
-    if (!path) return mt_error_set(err, MT_ERR_INVALID, "mt_image_read: no file name");
-    mode &= MT_IMAGE_MODE_BITS;
-    switch (format_of(path)) {
-    case FMT_EXR: st = mt__exr_read(path, mode, img, err); break;
-    case FMT_PNG: st = mt__png_read(path, img, err); break;
-    case FMT_PFM: st = mt__pfm_read(path, mode, img, err); break;
-    default:
-        return mt_error_set(err, MT_ERR_UNSUPPORTED,
-                            "%s: unknown image type (materia reads .exr, .png and .pfm)", path);
-    }
-    if (st != MT_OK) mt_image_destroy(img);
-    return st;
-}
-
-mt_status mt_image_write(const char *path, const mt_image *img, const mt_image_attr *attrs,
-                         int nattrs, mt_error *err)
-{
-    mt__exr_options opt;
-    int i;
-    mt_error_clear(err);
-    if (!path) return mt_error_set(err, MT_ERR_INVALID, "mt_image_write: no file name");
-    if (!img || !img->data || img->width < 1 || img->height < 1 ||
-        (img->channels != 1 && img->channels != 3 && img->channels != 4))
-        return mt_error_set(err, MT_ERR_INVALID, "%s: not a valid image to write", path);
-    if (nattrs < 0 || (nattrs > 0 && !attrs))
-        return mt_error_set(err, MT_ERR_INVALID, "%s: invalid attribute list", path);
-    for (i = 0; i < nattrs; i++)
-        if (!attrs[i].name || !attrs[i].name[0] || !attrs[i].value)
-            return mt_error_set(err, MT_ERR_INVALID, "%s: attribute %d has no name or value",
-                                path, i);
-    switch (format_of(path)) {
-    case FMT_EXR:
-        mt__exr_default_options(&opt);
-        return mt__exr_write(path, img, attrs, nattrs, &opt, err);
-    case FMT_PNG: return mt__png_write(path, img, 8, err);
-    case FMT_PFM: return mt__pfm_write(path, img, err);
-    default:
-        return mt_error_set(err, MT_ERR_UNSUPPORTED,
-                            "%s: unknown image type (materia writes .exr, .png and .pfm)",
-                            path);
-    }
-}
-
-mt_status mt_image_check_writable(const char *path, mt_error *err)
-{
-    char dir[4096];
-    const char *slash;
-    struct stat sb;
-    size_t n;
-    mt_error_clear(err);
-    if (!path || !path[0]) return mt_error_set(err, MT_ERR_INVALID, "no output file name");
-    if (format_of(path) == FMT_NONE)
-        return mt_error_set(err, MT_ERR_UNSUPPORTED,
-                            "%s: unknown image type (materia writes .exr, .png and .pfm)", path);
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
-        return mt_error_set(err, MT_ERR_IO, "%s: is a directory", path);
-    /* the image is written to a temporary file beside it, then renamed */
-    slash = strrchr(path, '/');
-    n = slash ? (size_t)(slash - path) : 0;
-    if (n == 0) snprintf(dir, sizeof dir, "%s", slash ? "/" : ".");
-    else if (n < sizeof dir) snprintf(dir, sizeof dir, "%.*s", (int)n, path);
-    else return mt_error_set(err, MT_ERR_IO, "%s: the directory's name is too long", path);
-    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
-        return mt_error_set(err, MT_ERR_IO, "%s: no directory \"%s\"", path, dir);
-    if (access(dir, W_OK) != 0)
-        return mt_error_set(err, MT_ERR_IO, "%s: directory \"%s\" is not writable", path, dir);
-    return MT_OK;
 }
 
 /* IEC 61966-2-1, evaluated in double and rounded once. */

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "core/alloc.h"
+#include "image/formats.h"
 #include "image/imageio.h"
 
 #define HEADER_MAX 256
@@ -192,3 +193,17 @@ mt_status mt__pfm_write(const char *path, const mt_image *img, mt_error *err)
     }
     return mt__tmpfile_commit(&tmp, path, err);
 }
+
+static mt_status write_plain(const char *path, const mt_image *img, const mt_image_attr *attrs, int nattrs,
+                             mt_error *err)
+{
+    return mt__pfm_write(path, img, err); /* PFM has no attributes */
+}
+
+const mt__image_format mt__pfm_format = {
+    .ext = ".pfm",
+    .name = "PFM",
+    /* no .omit: every build has PFM (it needs no library) */
+    .read = mt__pfm_read,
+    .write = write_plain,
+};

@@ -23,10 +23,13 @@
  * allocated.
  */
 #include <errno.h>
-#include <png.h>
 #include <string.h>
 #include "core/alloc.h"
 #include "image/imageio.h"
+#include "image/formats.h"
+
+#if MATERIA_HAVE_PNG
+#include <png.h>
 
 typedef struct png_state {
     const char *path;
@@ -43,7 +46,7 @@ typedef struct png_state {
     char msg[200];
 } png_state;
 
-static void on_error(png_structp png, png_const_charp msg)
+static void on_png_error(png_structp png, png_const_charp msg)
 {
     png_state *s = png_get_error_ptr(png);
     /* libpng's stdio reader says "Read Error" for a short read */
@@ -185,7 +188,7 @@ mt_status mt__png_read(const char *path, mt_image *img, mt_error *err)
         fclose(s.f);
         return mt_error_set(err, MT_ERR_FORMAT, "%s: not a PNG file (bad signature)", path);
     }
-    s.png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, &s, on_error, on_warning, &s,
+    s.png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, &s, on_png_error, on_warning, &s,
                                      on_malloc, on_free);
     if (s.png) s.info = png_create_info_struct(s.png);
     if (s.info) {
@@ -264,7 +267,7 @@ mt_status mt__png_write(const char *path, const mt_image *img, int bits, mt_erro
     s.f = tmp.fp;
     s.pixels = mt__malloc((size_t)img->width * (size_t)img->channels * (size_t)(s.bits / 8));
     if (s.pixels)
-        s.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &s, on_error, on_warning, &s,
+        s.png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, &s, on_png_error, on_warning, &s,
                                           on_malloc, on_free);
     if (s.png) s.info = png_create_info_struct(s.png);
     if (s.info)
@@ -279,3 +282,26 @@ mt_status mt__png_write(const char *path, const mt_image *img, int bits, mt_erro
     }
     return mt__tmpfile_commit(&tmp, path, err);
 }
+
+static mt_status read_any_mode(const char *path, mt_mode mode, mt_image *img, mt_error *err)
+{
+    return mt__png_read(path, img, err); /* pbrt-v2 reads no PNG: no mode bits */
+}
+
+/* mt_image_write's PNG: 8-bit sRGB */
+static mt_status write_8bit(const char *path, const mt_image *img, const mt_image_attr *attrs, int nattrs,
+                            mt_error *err)
+{
+    return mt__png_write(path, img, 8, err);
+}
+#endif
+
+const mt__image_format mt__png_format = {
+    .ext = ".png",
+    .name = "PNG",
+    .omit = "make NO_PNG=1",
+#if MATERIA_HAVE_PNG
+    .read = read_any_mode,
+    .write = write_8bit,
+#endif
+};

@@ -21,7 +21,7 @@ typedef struct resolver {
 
 static mt_material *from_spec(resolver *r, const mt_material_spec *spec, const mt_paramset *shape_params);
 
-static const mt_material *lookup(void *ctx, const char *name)
+static const mt_material *lookup_named(void *ctx, const char *name)
 {
     resolver *r = ctx;
     mt_material_spec spec;
@@ -46,7 +46,7 @@ static const mt_material *lookup(void *ctx, const char *name)
 static mt_material *from_spec(resolver *r, const mt_material_spec *spec, const mt_paramset *shape_params)
 {
     mt_texparams tp;
-    mt_material_ctx ctx = {lookup, NULL};
+    mt_material_ctx ctx = {lookup_named, NULL};
     ctx.lookup_ctx = r;
     /* a named material's own parameters come first, then those of the
      * Material current when it was made; a plain Material's parameters come

@@ -3,7 +3,7 @@
 #include "materials/material_impl.h"
 
 enum { KR, KT, INDEX };
-static const mt_tex_slot slots[] = {{"Kr", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular reflectance"},
+static const mt_tex_slot glass_slots[] = {{"Kr", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular reflectance"},
                                     {"Kt", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular transmittance"},
                                     {"index", 1, {1.5f}, MT_RANGE_POS, "index of refraction (outside: 1)"}};
 
@@ -21,9 +21,12 @@ static mt_status glass_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return MT_OK;
 }
 
-const mt_material_ops mt__glass_ops = {"glass", glass_max, glass_add, glass_eta, NULL, NULL, NULL, slots, 3, NULL, NULL, 0};
+const mt_material_kind mt_glass_material = {
+    .type = "glass",
+    .max_bxdfs = glass_max,
+    .add_bxdfs = glass_add,
+    .eta = glass_eta,
+    .slots = glass_slots,
+    .nslots = MT_COUNT(glass_slots),
+};
 
-mt_material *mt__glass_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__glass_ops, tp, err);
-}

@@ -1,6 +1,6 @@
 /*
- * The material base: reference counting, the registry of the 13 pbrt-v2
- * material types, and pbrt-v2's Material::GetBSDF skeleton -- bump mapping
+ * The material base: creation from a kind (registry.c finds kinds by name),
+ * reference counting, and pbrt-v2's Material::GetBSDF skeleton -- bump mapping
  * (when a "bumpmap" is given), a BSDF for the shading frame and the geometric
  * normal, then the type's BxDFs.
  */
@@ -9,26 +9,6 @@
 #include "materials/material_impl.h"
 #include "materials/uniform.h"
 #include "core/alloc.h"
-
-/* The registry: pbrt-v2's names, one creator each. */
-#define MATERIALS(X)                                                                     \
-    X(matte) X(plastic) X(glass) X(mirror) X(metal) X(shinymetal) X(substrate)            \
-    X(translucent) X(uber) X(mix) X(measured) X(subsurface) X(kdsubsurface)
-#define NAME(n) #n,
-#define CREATOR(n) mt__##n##_create,
-#define OPS(n) &mt__##n##_ops,
-static const char *const names[] = {MATERIALS(NAME)};
-static const mt_material_create_fn creators[] = {MATERIALS(CREATOR)};
-static const mt_material_ops *const all_ops[] = {MATERIALS(OPS)};
-#define NTYPES (int)(sizeof names / sizeof names[0])
-
-const mt_material_ops *mt__material_ops(const char *type)
-{
-    int i;
-    for (i = 0; i < NTYPES; ++i)
-        if (!strcmp(names[i], type)) return all_ops[i];
-    return NULL;
-}
 
 const char *mt__range_text(mt_range r)
 {
@@ -82,27 +62,21 @@ static mt_status check_range(const mt_tex_slot *sl, const mt_texture *t, const m
     return MT_OK;
 }
 
-const char *const *mt_material_types(int *count)
-{
-    if (count) *count = NTYPES;
-    return names;
-}
+const char *mt_material_kind_name(const mt_material_kind *k) { return k->type; }
+int mt_material_kind_has_bssrdf(const mt_material_kind *k) { return k->bssrdf != NULL; }
 
-mt_material *mt_material_create(const char *type, const mt_transform *mtl2world,
-                                const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
+mt_material *mt_material_create_kind(const mt_material_kind *k, const mt_transform *mtl2world,
+                                     const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    int i;
     mt_transform id = mt_transform_identity();
     mt_material_ctx none = {NULL, NULL};
     mt_error_clear(err);
-    if (!type) return mt_error_set(err, MT_ERR_INVALID, "material: no type given"), NULL;
-    for (i = 0; i < NTYPES; ++i)
-        if (!strcmp(names[i], type)) return creators[i](mtl2world ? mtl2world : &id, tp, ctx ? ctx : &none, err);
-    mt_error_set(err, MT_ERR_NOT_FOUND, "material type \"%s\" unknown", type);
-    return NULL;
+    if (!k) return mt_error_set(err, MT_ERR_INVALID, "material: no kind given"), NULL;
+    if (!k->create) return mt__material_new(sizeof(mt_material), k, tp, err);
+    return k->create(mtl2world ? mtl2world : &id, tp, ctx ? ctx : &none, err);
 }
 
-void *mt__material_new(size_t size, const mt_material_ops *ops, const mt_texparams *tp, mt_error *err)
+void *mt__material_new(size_t size, const mt_material_kind *ops, const mt_texparams *tp, mt_error *err)
 {
     mt_tex_slot slots[MT_MATERIAL_SLOTS];
     if (!ops->defaults) return mt__material_new_with(size, ops, ops->slots, tp, err);
@@ -111,7 +85,7 @@ void *mt__material_new(size_t size, const mt_material_ops *ops, const mt_texpara
     return mt__material_new_with(size, ops, slots, tp, err);
 }
 
-void *mt__material_new_with(size_t size, const mt_material_ops *ops, const mt_tex_slot *slots,
+void *mt__material_new_with(size_t size, const mt_material_kind *ops, const mt_tex_slot *slots,
                             const mt_texparams *tp, mt_error *err)
 {
     mt_material *m = mt__calloc(1, size);
@@ -205,7 +179,7 @@ int mt__material_is_uniform(const mt_material *m)
     for (i = 0; i < m->ops->nslots; ++i)
         if (!is_constant(m->tex[i])) return 0;
     /* a get_bsdf of its own: only the mix's is known to read nothing else */
-    if (m->ops->get_bsdf) return mt__mix_is_uniform(m);
+    if (m->ops->get_bsdf) return m->ops->is_uniform ? m->ops->is_uniform(m) : 0;
     return 1;
 }
 
@@ -232,6 +206,6 @@ int mt__slot_may_be_nonblack(const mt_material *m, int i)
     return !mt__slot_constant(m, i, &v) || !mt_rgb_is_black(mt_rgb_clamp0(v));
 }
 
-mt_rgb mt__tex_rgb(const mt_texture *t, const mt_diffgeom *dg) { return mt_rgb_clamp0(mt_texture_eval_rgb(t, dg)); }
-mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg) { return mt_texture_eval_float(t, dg); }
+mt_rgb mt__mat_rgb(const mt_texture *t, const mt_diffgeom *dg) { return mt_rgb_clamp0(mt_texture_eval_rgb(t, dg)); }
+mt_real mt__mat_float(const mt_texture *t, const mt_diffgeom *dg) { return mt_texture_eval_float(t, dg); }
 

@@ -16,8 +16,17 @@
 typedef struct mt_tex_slot mt_tex_slot;
 typedef struct mt_param_doc mt_param_doc;
 
-typedef struct mt_material_ops {
-    const char *type;
+/* A kind of material (pbrt-v2's material type): its operations and its
+ * parameters. Each kind is one file defining its mt_<name>_material with
+ * designated initializers; the registry is the list MT_MATERIAL_KINDS in
+ * materia/material.h. */
+struct mt_material_kind {
+    const char *type; /* pbrt-v2's name: "plastic", ... */
+    /* Creates the material from its parameters (a kind with fields or
+     * defaults of its own); NULL: a plain mt_material whose textures are
+     * read as slots says (mt__material_new). */
+    mt_material *(*create)(const mt_transform *mtl2world, const mt_texparams *tp,
+                           const mt_material_ctx *ctx, mt_error *err);
     /* the most BxDFs get_bsdf can add (a mix must stay within MT_MAX_BXDFS) */
     int (*max_bxdfs)(const mt_material *m);
     mt_status (*add_bxdfs)(const mt_material *m, mt_bsdf *bsdf, const mt_diffgeom *dgs,
@@ -30,6 +39,9 @@ typedef struct mt_material_ops {
     /* a whole get_bsdf of its own (the mix); NULL for the common path */
     mt_bsdf *(*get_bsdf)(const mt_material *m, const mt_diffgeom *dg_geom,
                          const mt_diffgeom *dg_shading, mt_arena *arena, mt_error *err);
+    /* with get_bsdf: whether that BSDF is the same at every point given
+     * uniform textures (materials/uniform.h); NULL: never taken as uniform */
+    int (*is_uniform)(const mt_material *m);
     /* the texture parameters, read into tex[] in this order */
     const mt_tex_slot *slots;
     int nslots;
@@ -40,11 +52,14 @@ typedef struct mt_material_ops {
      * creator reads them itself) */
     const mt_param_doc *other;
     int nother;
-} mt_material_ops;
+};
+
+/* The number of elements of a static array (for .nslots and .nother). */
+#define MT_COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
 
 struct mt_material {
-    const mt_material_ops *ops;
+    const mt_material_kind *ops;
     int refs;
     mt_mode mode;
     mt_texture *bump;                     /* NULL without "bumpmap" */
@@ -88,23 +103,16 @@ const char *mt__range_text(mt_range r);
  * ops->slots[i] says, plus "bumpmap"; NULL with err filled (nothing leaked)
  * when a parameter is wrong (a constant outside its range included) or
  * memory is exhausted. */
-void *mt__material_new(size_t size, const mt_material_ops *ops, const mt_texparams *tp, mt_error *err);
+void *mt__material_new(size_t size, const mt_material_kind *ops, const mt_texparams *tp, mt_error *err);
 
 /* As mt__material_new with slots (ops->nslots of them) in place of
  * ops->slots: defaults that depend on other parameters. */
-void *mt__material_new_with(size_t size, const mt_material_ops *ops, const mt_tex_slot *slots,
+void *mt__material_new_with(size_t size, const mt_material_kind *ops, const mt_tex_slot *slots,
                             const mt_texparams *tp, mt_error *err);
 
 /* Locates err at the parameter name of tp (the geometry's list first), when
  * it is there. */
 void mt__material_locate_param(const mt_texparams *tp, const char *name, mt_error *err);
-
-/* The operations table of a material type by pbrt-v2 name, or NULL. */
-const mt_material_ops *mt__material_ops(const char *type);
-
-/* Whether both materials of a mix are uniform (materials/uniform.h); 0 for
- * any other material. */
-int mt__mix_is_uniform(const mt_material *m);
 
 /* The most BxDFs the material can add. */
 int mt__material_max_bxdfs(const mt_material *m);
@@ -120,12 +128,12 @@ int mt__slot_constant(const mt_material *m, int i, mt_rgb *v);
 
 /* Evaluations shared by the materials: a spectrum texture clamped from below
  * (pbrt-v2's Evaluate(dgs).Clamp()), and a float texture. */
-mt_rgb mt__tex_rgb(const mt_texture *t, const mt_diffgeom *dg);
-mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg);
+mt_rgb mt__mat_rgb(const mt_texture *t, const mt_diffgeom *dg);
+mt_real mt__mat_float(const mt_texture *t, const mt_diffgeom *dg);
 
 /* tex[i] evaluated at the shading point (spectra clamped from below). */
-#define MT_RGB(m, i, dgs) mt__tex_rgb((m)->tex[(i)], (dgs))
-#define MT_FLOAT(m, i, dgs) mt__tex_float((m)->tex[(i)], (dgs))
+#define MT_RGB(m, i, dgs) mt__mat_rgb((m)->tex[(i)], (dgs))
+#define MT_FLOAT(m, i, dgs) mt__mat_float((m)->tex[(i)], (dgs))
 
 /* Adds x (NULL: a creator failed and err says why) to the BSDF. */
 #define MT_ADD(bsdf, x, err)                                   \
@@ -133,28 +141,5 @@ mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg);
         mt_status st_ = mt__bsdf_add((bsdf), (x), (err));      \
         if (st_) return st_;                                   \
     } while (0)
-
-/* Creators of the material types (one file each). */
-typedef mt_material *(*mt_material_create_fn)(const mt_transform *mtl2world, const mt_texparams *tp,
-                                              const mt_material_ctx *ctx, mt_error *err);
-mt_material *mt__matte_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__plastic_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__glass_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__mirror_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__metal_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__shinymetal_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__substrate_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__translucent_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__uber_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__mix_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__measured_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__subsurface_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-mt_material *mt__kdsubsurface_create(const mt_transform *, const mt_texparams *, const mt_material_ctx *, mt_error *);
-
-/* Their operations tables (the registry lists them for docs/REFERENCE.md). */
-extern const mt_material_ops mt__matte_ops, mt__plastic_ops, mt__glass_ops, mt__mirror_ops, mt__metal_ops,
-    mt__shinymetal_ops, mt__substrate_ops, mt__translucent_ops, mt__uber_ops, mt__mix_ops, mt__measured_ops,
-    mt__subsurface_ops, mt__kdsubsurface_ops;
-
 
 #endif

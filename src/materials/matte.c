@@ -5,7 +5,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, SIGMA };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot matte_slots[] = {
     {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"sigma", 1, {0}, MT_RANGE_SIGMA, "Oren-Nayar roughness: the standard deviation of the facet angle, in degrees"}};
 
@@ -21,9 +21,11 @@ static mt_status matte_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return mt__bsdf_add(b, mt_orennayar_create(a, m->mode, r, sig, err), err);
 }
 
-const mt_material_ops mt__matte_ops = {"matte", matte_max, matte_add, NULL, NULL, NULL, NULL, slots, 2, NULL, NULL, 0};
+const mt_material_kind mt_matte_material = {
+    .type = "matte",
+    .max_bxdfs = matte_max,
+    .add_bxdfs = matte_add,
+    .slots = matte_slots,
+    .nslots = MT_COUNT(matte_slots),
+};
 
-mt_material *mt__matte_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__matte_ops, tp, err);
-}

@@ -25,15 +25,12 @@ static mt_status measured_add(const mt_material *m, mt_bsdf *b, const mt_diffgeo
 
 static void measured_destroy(mt_material *m) { mt_measured_destroy(((measured_material *)m)->data); }
 
-static const mt_param_doc other[] = {
+static const mt_param_doc measured_other[] = {
     {"filename", "string", "(required)", "a readable file",
      "a .brdf file (irregular isotropic samples) or a MERL binary table (any other suffix)"}};
 
-const mt_material_ops mt__measured_ops = {"measured", measured_max, measured_add, NULL, NULL,
-                                          measured_destroy, NULL, NULL, 0, NULL, other, 1};
-
-mt_material *mt__measured_create(const mt_transform *xf, const mt_texparams *tp,
-                                 const mt_material_ctx *ctx, mt_error *err)
+static mt_material *measured_create(const mt_transform *xf, const mt_texparams *tp,
+                                  const mt_material_ctx *ctx, mt_error *err)
 {
     char path[4096];
     measured_material *m;
@@ -43,7 +40,7 @@ mt_material *mt__measured_create(const mt_transform *xf, const mt_texparams *tp,
                        "measured material: \"string filename\" is required");
         return NULL;
     }
-    m = mt__material_new(sizeof *m, &mt__measured_ops, tp, err);
+    m = mt__material_new(sizeof *m, &mt_measured_material, tp, err);
     if (!m) return NULL;
     m->data = mt_measured_load(path, err);
     if (!m->data) {
@@ -58,3 +55,13 @@ mt_material *mt__measured_create(const mt_transform *xf, const mt_texparams *tp,
     }
     return &m->base;
 }
+
+const mt_material_kind mt_measured_material = {
+    .type = "measured",
+    .create = measured_create,
+    .max_bxdfs = measured_max,
+    .add_bxdfs = measured_add,
+    .destroy = measured_destroy,
+    .other = measured_other,
+    .nother = MT_COUNT(measured_other),
+};

@@ -48,7 +48,7 @@ static mt_status metal_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
 }
 
 /* eta and k default to copper's (metal_defaults) */
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot metal_slots[] = {
     {"eta", 0, {0}, MT_RANGE_NONNEG, "real part of the conductor's index of refraction (default: copper)"},
     {"k", 0, {0}, MT_RANGE_NONNEG, "absorption coefficient, the imaginary part (default: copper)"},
     {"roughness", 1, {0.01f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"}};
@@ -80,10 +80,12 @@ static void metal_defaults(mt_tex_slot *s)
     }
 }
 
-const mt_material_ops mt__metal_ops = {"metal", metal_max, metal_add, NULL, NULL, NULL, NULL,
-                                       slots, 3, metal_defaults, NULL, 0};
+const mt_material_kind mt_metal_material = {
+    .type = "metal",
+    .max_bxdfs = metal_max,
+    .add_bxdfs = metal_add,
+    .slots = metal_slots,
+    .nslots = MT_COUNT(metal_slots),
+    .defaults = metal_defaults,
+};
 
-mt_material *mt__metal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__metal_ops, tp, err);
-}

@@ -14,10 +14,10 @@
 #include "materials/uniform.h"
 
 enum { AMOUNT };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot mix_slots[] = {
     {"amount", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0,
      "weight of namedmaterial1; namedmaterial2 has 1 - amount, also taken as 0 below 0"}};
-static const mt_param_doc other[] = {
+static const mt_param_doc mix_other[] = {
     {"namedmaterial1", "string", "(required)", "a MakeNamedMaterial name", "the first material"},
     {"namedmaterial2", "string", "(required)", "a MakeNamedMaterial name", "the second material"}};
 
@@ -57,10 +57,12 @@ static mt_bsdf *mix_get_bsdf(const mt_material *m, const mt_diffgeom *dg_geom, c
     return b1;
 }
 
-int mt__mix_is_uniform(const mt_material *m)
+/* Both materials uniform: the mix's BSDF is too (its amount is one of its
+ * slots, checked by mt__material_is_uniform). */
+static int mix_is_uniform(const mt_material *m)
 {
     const mix *x = (const mix *)m;
-    return m->ops == &mt__mix_ops && mt__material_is_uniform(x->m1) && mt__material_is_uniform(x->m2);
+    return mt__material_is_uniform(x->m1) && mt__material_is_uniform(x->m2);
 }
 
 static void mix_destroy(mt_material *m)
@@ -69,8 +71,6 @@ static void mix_destroy(mt_material *m)
     mt_material_destroy(x->m1);
     mt_material_destroy(x->m2);
 }
-
-const mt_material_ops mt__mix_ops = {"mix", mix_max, NULL, NULL, NULL, mix_destroy, mix_get_bsdf, slots, 1, NULL, other, 2};
 
 static mt_material *named(const mt_texparams *tp, const mt_material_ctx *ctx, const char *param, mt_error *err)
 {
@@ -93,9 +93,9 @@ static mt_material *named(const mt_texparams *tp, const mt_material_ctx *ctx, co
     return mt_material_retain((mt_material *)m);
 }
 
-mt_material *mt__mix_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
+static mt_material *mix_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
 {
-    mix *x = mt__material_new(sizeof *x, &mt__mix_ops, tp, err);
+    mix *x = mt__material_new(sizeof *x, &mt_mix_material, tp, err);
     if (!x) return NULL;
     if (!(x->m1 = named(tp, ctx, "namedmaterial1", err)) || !(x->m2 = named(tp, ctx, "namedmaterial2", err))) {
         mt_material_destroy(&x->base);
@@ -110,3 +110,16 @@ mt_material *mt__mix_create(const mt_transform *xf, const mt_texparams *tp, cons
     }
     return &x->base;
 }
+
+const mt_material_kind mt_mix_material = {
+    .type = "mix",
+    .create = mix_create,
+    .max_bxdfs = mix_max,
+    .destroy = mix_destroy,
+    .get_bsdf = mix_get_bsdf,
+    .is_uniform = mix_is_uniform,
+    .slots = mix_slots,
+    .nslots = MT_COUNT(mix_slots),
+    .other = mix_other,
+    .nother = MT_COUNT(mix_other),
+};

@@ -7,7 +7,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, ROUGHNESS };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot plastic_slots[] = {
     {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
     {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"}};
@@ -28,9 +28,11 @@ static mt_status plastic_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom
     return MT_OK;
 }
 
-const mt_material_ops mt__plastic_ops = {"plastic", plastic_max, plastic_add, NULL, NULL, NULL, NULL, slots, 3, NULL, NULL, 0};
+const mt_material_kind mt_plastic_material = {
+    .type = "plastic",
+    .max_bxdfs = plastic_max,
+    .add_bxdfs = plastic_add,
+    .slots = plastic_slots,
+    .nslots = MT_COUNT(plastic_slots),
+};
 
-mt_material *mt__plastic_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__plastic_ops, tp, err);
-}

@@ -11,7 +11,7 @@
 #include "materials/material_impl.h"
 
 enum { KS, ROUGHNESS, KR };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot shinymetal_slots[] = {
     {"Ks", 0, {1, 1, 1}, MT_RANGE_APPROX, "normal-incidence reflectance of the glossy lobe"},
     {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"},
     {"Kr", 0, {1, 1, 1}, MT_RANGE_APPROX, "normal-incidence reflectance of the specular lobe"}};
@@ -33,10 +33,17 @@ static mt_status shiny_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *
     return MT_OK;
 }
 
-const mt_material_ops mt__shinymetal_ops = {"shinymetal", shiny_max, shiny_add, NULL, NULL, NULL, NULL, slots, 3, NULL, NULL, 0};
-
-mt_material *mt__shinymetal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
-                                   mt_error *err)
+static mt_material *shinymetal_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
+                                      mt_error *err)
 {
-    return mt__material_new(sizeof(mt_material), &mt__shinymetal_ops, tp, err);
+    return mt__material_new(sizeof(mt_material), &mt_shinymetal_material, tp, err);
 }
+
+const mt_material_kind mt_shinymetal_material = {
+    .type = "shinymetal",
+    .create = shinymetal_create,
+    .max_bxdfs = shiny_max,
+    .add_bxdfs = shiny_add,
+    .slots = shinymetal_slots,
+    .nslots = MT_COUNT(shinymetal_slots),
+};

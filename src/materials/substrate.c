@@ -4,7 +4,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, UROUGH, VROUGH };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot substrate_slots[] = {
     {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance of the substrate"},
     {"Ks", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "normal-incidence reflectance of the coat"},
     {"uroughness", 1, {0.1f}, MT_RANGE_NONNEG, "the anisotropic exponent along dpdu is 1/uroughness"},
@@ -22,9 +22,11 @@ static mt_status substrate_add(const mt_material *m, mt_bsdf *b, const mt_diffge
     return mt__bsdf_add(b, mt_fresnelblend_create(a, m->mode, d, s, mt_anisotropic(1 / u, 1 / v), err), err);
 }
 
-const mt_material_ops mt__substrate_ops = {"substrate", substrate_max, substrate_add, NULL, NULL, NULL, NULL, slots, 4, NULL, NULL, 0};
+const mt_material_kind mt_substrate_material = {
+    .type = "substrate",
+    .max_bxdfs = substrate_max,
+    .add_bxdfs = substrate_add,
+    .slots = substrate_slots,
+    .nslots = MT_COUNT(substrate_slots),
+};
 
-mt_material *mt__substrate_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__substrate_ops, tp, err);
-}

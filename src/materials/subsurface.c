@@ -13,10 +13,10 @@
 enum { KR, INDEX, SIGMA_A, SIGMA_PRIME_S };
 enum { KD = SIGMA_A, MFP };
 
-typedef struct subsurface {
+typedef struct subsurface_mat {
     mt_material base;
     mt_real scale;
-} subsurface;
+} subsurface_mat;
 
 static int ss_max(const mt_material *m) { return mt__slot_may_be_nonblack(m, KR); }
 
@@ -30,7 +30,7 @@ static mt_status ss_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs
 
 static int ss_bssrdf(const mt_material *m, const mt_diffgeom *dgs, mt__bssrdf_cache *cache, mt_bssrdf *out)
 {
-    mt_real scale = ((const subsurface *)m)->scale;
+    mt_real scale = ((const subsurface_mat *)m)->scale;
     /* pbrt-v2 does not clamp these */
     out->sigma_a = mt_rgb_scale(mt_texture_eval_rgb(m->tex[SIGMA_A], dgs), scale);
     out->sigma_prime_s = mt_rgb_scale(mt_texture_eval_rgb(m->tex[SIGMA_PRIME_S], dgs), scale);
@@ -65,19 +65,14 @@ static const mt_tex_slot kd_slots[] = {
     {"Kd", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "diffuse reflectance the medium is made to have"},
     {"meanfreepath", 1, {1}, MT_RANGE_POS, "mean free path in the medium"}};
 
-const mt_material_ops mt__subsurface_ops = {"subsurface", ss_max, ss_add, NULL, ss_bssrdf, NULL, NULL,
-                                            ss_slots, 4, NULL, ss_other, 2};
-const mt_material_ops mt__kdsubsurface_ops = {"kdsubsurface", ss_max, ss_add, NULL, kd_bssrdf, NULL, NULL,
-                                              kd_slots, 4, NULL, NULL, 0};
-
-mt_material *mt__subsurface_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
-                                   mt_error *err)
+static mt_material *subsurface_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
+                                      mt_error *err)
 {
     mt_rgb sa = mt_rgb_black(), sps = sa;
     const char *name = "";
     mt_real scale = 1;
     mt_tex_slot slots[4];
-    subsurface *x;
+    subsurface_mat *x;
     int c;
     memcpy(slots, ss_slots, sizeof slots);
     if (mt_texparams_string(tp, "name", "", &name, err) || mt_texparams_float(tp, "scale", 1, &scale, err))
@@ -99,13 +94,28 @@ mt_material *mt__subsurface_create(const mt_transform *xf, const mt_texparams *t
         slots[SIGMA_A].def[c] = sa.c[c];
         slots[SIGMA_PRIME_S].def[c] = sps.c[c];
     }
-    x = mt__material_new_with(sizeof *x, &mt__subsurface_ops, slots, tp, err);
+    x = mt__material_new_with(sizeof *x, &mt_subsurface_material, slots, tp, err);
     if (x) x->scale = scale;
     return x ? &x->base : NULL;
 }
 
-mt_material *mt__kdsubsurface_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
-                                     mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__kdsubsurface_ops, tp, err);
-}
+const mt_material_kind mt_subsurface_material = {
+    .type = "subsurface",
+    .create = subsurface_create,
+    .max_bxdfs = ss_max,
+    .add_bxdfs = ss_add,
+    .bssrdf = ss_bssrdf,
+    .slots = ss_slots,
+    .nslots = MT_COUNT(ss_slots),
+    .other = ss_other,
+    .nother = MT_COUNT(ss_other),
+};
+
+const mt_material_kind mt_kdsubsurface_material = {
+    .type = "kdsubsurface",
+    .max_bxdfs = ss_max,
+    .add_bxdfs = ss_add,
+    .bssrdf = kd_bssrdf,
+    .slots = kd_slots,
+    .nslots = MT_COUNT(kd_slots),
+};

@@ -9,7 +9,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, ROUGHNESS, REFLECT, TRANSMIT };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot translucent_slots[] = {
     {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
     {"roughness", 1, {0.1f}, MT_RANGE_NONNEG, "the Blinn exponent is 1/roughness (at most 10000)"},
@@ -54,10 +54,12 @@ static mt_status translucent_add(const mt_material *m, mt_bsdf *b, const mt_diff
     return MT_OK;
 }
 
-const mt_material_ops mt__translucent_ops = {"translucent", translucent_max, translucent_add, translucent_eta, NULL, NULL, NULL, slots, 5, NULL, NULL, 0};
+const mt_material_kind mt_translucent_material = {
+    .type = "translucent",
+    .max_bxdfs = translucent_max,
+    .add_bxdfs = translucent_add,
+    .eta = translucent_eta,
+    .slots = translucent_slots,
+    .nslots = MT_COUNT(translucent_slots),
+};
 
-mt_material *mt__translucent_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx,
-                                    mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__translucent_ops, tp, err);
-}

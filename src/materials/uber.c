@@ -10,7 +10,7 @@
 #include "materials/material_impl.h"
 
 enum { KD, KS, KR, KT, ROUGHNESS, INDEX, OPACITY };
-static const mt_tex_slot slots[] = {
+static const mt_tex_slot uber_slots[] = {
     {"Kd", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "diffuse reflectance"},
     {"Ks", 0, {0.25f, 0.25f, 0.25f}, MT_RANGE_CLAMP0, "glossy reflectance"},
     {"Kr", 0, {0}, MT_RANGE_CLAMP0, "specular reflectance"},
@@ -67,9 +67,11 @@ static mt_status uber_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *d
     return MT_OK;
 }
 
-const mt_material_ops mt__uber_ops = {"uber", uber_max, uber_add, NULL, NULL, NULL, NULL, slots, 7, NULL, NULL, 0};
+const mt_material_kind mt_uber_material = {
+    .type = "uber",
+    .max_bxdfs = uber_max,
+    .add_bxdfs = uber_add,
+    .slots = uber_slots,
+    .nslots = MT_COUNT(uber_slots),
+};
 
-mt_material *mt__uber_create(const mt_transform *xf, const mt_texparams *tp, const mt_material_ctx *ctx, mt_error *err)
-{
-    return mt__material_new(sizeof(mt_material), &mt__uber_ops, tp, err);
-}

@@ -31,18 +31,18 @@
 
 #define ANGLE_SLACK 1e-5 /* radians: pi/2 written with 6 decimals is 1.570796(3) */
 
-typedef struct numbers {
+typedef struct number_list {
     mt_real *v;
     int *line;
     int n, cap_v, cap_line;
-} numbers;
+} number_list;
 
 static int is_number_char(int c)
 {
     return isdigit(c) || c == '.' || c == 'e' || c == '-' || c == '+';
 }
 
-static mt_status push(numbers *nb, mt_real v, int line)
+static mt_status push_number(number_list *nb, mt_real v, int line)
 {
     mt_real *a;
     int *b;
@@ -59,7 +59,7 @@ static mt_status push(numbers *nb, mt_real v, int line)
 }
 
 /* ReadFloatFile's tokens, each checked to be a whole number within float. */
-static mt_status tokenize(const char *path, const char *text, size_t len, numbers *nb,
+static mt_status tokenize(const char *path, const char *text, size_t len, number_list *nb,
                           mt_error *err)
 {
     size_t i = 0;
@@ -104,7 +104,7 @@ static mt_status tokenize(const char *path, const char *text, size_t len, number
             return mt__fail_at(err, MT_ERR_PARSE, path, line, 0,
                                "measured BRDF file: a comment touches the number %s (pbrt-v2 "
                                "would read the comment's digits as data)", word);
-        st = push(nb, (mt_real)d, line);
+        st = push_number(nb, (mt_real)d, line);
         if (st == MT_ERR_LIMIT)
             return mt__fail_at(err, st, path, line, 0,
                                "measured BRDF file: more than %d numbers", MT__MAX_VALUES);
@@ -115,7 +115,7 @@ static mt_status tokenize(const char *path, const char *text, size_t len, number
 }
 
 /* The header: the wavelength count and the wavelengths, checked. */
-static mt_status header(const char *path, const numbers *nb, int *nwl, mt_error *err)
+static mt_status header(const char *path, const number_list *nb, int *nwl, mt_error *err)
 {
     mt_real c;
     int i;
@@ -159,7 +159,7 @@ static int sample_ok(const mt_real *s, int nwl, int *bad)
     return 1;
 }
 
-static mt_status sample_error(const char *path, const numbers *nb, int at, int index, int bad,
+static mt_status sample_error(const char *path, const number_list *nb, int at, int index, int bad,
                               mt_error *err)
 {
     static const char *const angle[] = {"theta_i", "phi_i", "theta_o", "phi_o"};
@@ -174,7 +174,7 @@ static mt_status sample_error(const char *path, const numbers *nb, int at, int i
 }
 
 /* The samples: remapped points, RGB values (pbrt-v2 measured.cpp). */
-static mt_measured *samples(const char *path, const numbers *nb, int nwl, mt_error *err)
+static mt_measured *samples(const char *path, const number_list *nb, int nwl, mt_error *err)
 {
     int per = 4 + nwl, rest = nb->n - 1 - nwl, n = rest / per, i, k, bad;
     mt_real *pts;
@@ -231,7 +231,7 @@ static mt_measured *samples(const char *path, const numbers *nb, int nwl, mt_err
 
 mt_measured *mt__brdf_file_read(const char *path, mt_error *err)
 {
-    numbers nb;
+    number_list nb;
     char *text;
     size_t len;
     int nwl = 0;

@@ -13,18 +13,18 @@
 #include "materia/tools/merl.h"
 #include "materia/state.h"
 
-typedef struct apply_ctx {
+typedef struct merl_apply_ctx {
     mt_state *state;
     int materials;
     /* where the current material was chosen: an error creating it is
      * reported there, as the query tool reports it at the statement */
     char file[256];
     int line, column;
-} apply_ctx;
+} merl_apply_ctx;
 
-static mt_status apply(void *ctx, const mt_statement *st, mt_error *err)
+static mt_status merl_apply(void *ctx, const mt_statement *st, mt_error *err)
 {
-    apply_ctx *a = ctx;
+    merl_apply_ctx *a = ctx;
     int handled = 0;
     mt_status s = mt_state_apply(a->state, st, &handled, err);
     if (s) return s;
@@ -44,7 +44,7 @@ static mt_status apply(void *ctx, const mt_statement *st, mt_error *err)
     return MT_OK;
 }
 
-static mt_status tabulate_material(const apply_ctx *a, const mt_merl_options *opt,
+static mt_status tabulate_material(const merl_apply_ctx *a, const mt_merl_options *opt,
                                    const char *path, mt_error *err)
 {
     const mt_state *s = a->state;
@@ -75,7 +75,7 @@ mt_status mt_merl_write_statements(const char *statements, const mt_merl_options
                                    const char *path, mt_error *err)
 {
     static const mt_merl_options defaults = {MT_MODE_PBRT_V2, MT_MERL_AT_CORNER, NULL, NULL, NULL};
-    apply_ctx a;
+    merl_apply_ctx a;
     mt_parse_options popt;
     mt_status st;
     mt_error_clear(err);
@@ -88,7 +88,7 @@ mt_status mt_merl_write_statements(const char *statements, const mt_merl_options
     memset(&popt, 0, sizeof popt);
     popt.warn = opt->warn;
     popt.warn_ctx = opt->warn_ctx;
-    st = mt_parse_string(statements, "<statements>", opt->dir, 1, &popt, apply, &a, err);
+    st = mt_parse_string(statements, "<statements>", opt->dir, 1, &popt, merl_apply, &a, err);
     if (st == MT_OK && a.materials == 0)
         st = mt_error_set(err, MT_ERR_INVALID,
                           "no Material or NamedMaterial statement: nothing to tabulate");

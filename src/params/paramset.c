@@ -308,7 +308,7 @@ void mt_paramset_mark_used(const mt_paramset *ps, const char *name)
         if (strcmp(ps->e[i].p.name, name) == 0) mark(ps, i);
 }
 
-static mt_status fail(const mt_param *p, mt_status st, mt_error *err)
+static mt_status param_fail(const mt_param *p, mt_status st, mt_error *err)
 {
     mt_error_locate(err, p->file, p->line, p->column);
     return st;
@@ -318,7 +318,7 @@ static mt_status fail(const mt_param *p, mt_status st, mt_error *err)
  * The parameter called name, checked to be of type want, and to have one
  * element when single. *found = NULL and MT_OK when absent.
  */
-static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type want, int single,
+static mt_status find_typed(const mt_paramset *ps, const char *name, mt_param_type want, int single,
                         const mt_param **found, mt_error *err)
 {
     int i = index_of_type(ps, name, want);
@@ -330,7 +330,7 @@ static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type w
     if (p->type != want) {
         mt_error_param(err, MT_ERR_INVALID, name, "is declared \"%s %s\" but is read as %s",
                        p->type_name, name, type_desc(want));
-        return fail(p, MT_ERR_INVALID, err);
+        return param_fail(p, MT_ERR_INVALID, err);
     }
     if (single && p->nvalues != type_width(p->type)) {
         int n = p->nvalues / type_width(p->type); /* elements */
@@ -346,7 +346,7 @@ static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type w
         else
             mt_error_param(err, MT_ERR_INVALID, name, "expected one %s value, found %d",
                            p->type_name, p->nvalues);
-        return fail(p, MT_ERR_INVALID, err);
+        return param_fail(p, MT_ERR_INVALID, err);
     }
     *found = p;
     return MT_OK;
@@ -357,7 +357,7 @@ mt_status mt_params_float(const mt_paramset *ps, const char *name, mt_real def, 
 {
     mt_error_clear(err);
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_FLOAT, 1, &p, err);
+    mt_status st = find_typed(ps, name, MT_PARAM_FLOAT, 1, &p, err);
     *out = p ? (mt_real)p->doubles[0] : def;
     return st;
 }
@@ -366,7 +366,7 @@ static mt_status one_int(const mt_paramset *ps, const char *name, mt_param_type 
                          int *out, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, 1, &p, err);
+    mt_status st = find_typed(ps, name, t, 1, &p, err);
     *out = p ? p->ints[0] : def;
     return st;
 }
@@ -389,7 +389,7 @@ static mt_status one_string(const mt_paramset *ps, const char *name, mt_param_ty
                             const char *def, const char **out, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, 1, &p, err);
+    mt_status st = find_typed(ps, name, t, 1, &p, err);
     *out = p ? p->strings[0] : def;
     return st;
 }
@@ -413,7 +413,7 @@ mt_status mt_params_filename(const mt_paramset *ps, const char *name, const char
 {
     mt_error_clear(err);
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_STRING, 1, &p, err);
+    mt_status st = find_typed(ps, name, MT_PARAM_STRING, 1, &p, err);
     if (st != MT_OK) return st;
     /* pbrt-v2 FindOneFilename: an absent or empty name gives the default as
      * it is; any other is resolved against the statement's directory. */
@@ -430,7 +430,7 @@ mt_status mt_params_filename(const mt_paramset *ps, const char *name, const char
         st = mt__path_join(p->dir, p->strings[0], out, size, &why);
         if (st != MT_OK) {
             mt_error_param(err, st, name, "%s", why.message);
-            return fail(p, st, err);
+            return param_fail(p, st, err);
         }
     }
     return MT_OK;
@@ -440,7 +440,7 @@ static mt_status one_vec(const mt_paramset *ps, const char *name, mt_param_type 
                          mt_vec3 *out, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, 1, &p, err);
+    mt_status st = find_typed(ps, name, t, 1, &p, err);
     *out = p ? mt_v3((mt_real)p->doubles[0], (mt_real)p->doubles[1], (mt_real)p->doubles[2]) : def;
     return st;
 }
@@ -471,7 +471,7 @@ mt_status mt_params_rgb(const mt_paramset *ps, const char *name, mt_rgb def, mt_
 {
     mt_error_clear(err);
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_SPECTRUM, 1, &p, err);
+    mt_status st = find_typed(ps, name, MT_PARAM_SPECTRUM, 1, &p, err);
     *out = p ? mt_rgb_make((mt_real)p->doubles[0], (mt_real)p->doubles[1], (mt_real)p->doubles[2]) : def;
     return st;
 }
@@ -480,7 +480,7 @@ static mt_status array_of(const mt_paramset *ps, const char *name, mt_param_type
                           const double **values, int *count, mt_error *err)
 {
     const mt_param *p;
-    mt_status st = lookup(ps, name, t, 0, &p, err);
+    mt_status st = find_typed(ps, name, t, 0, &p, err);
     *values = p ? p->doubles : NULL;
     *count = p ? p->nvalues / type_width(t) : 0;
     return st;
@@ -519,7 +519,7 @@ mt_status mt_params_ints(const mt_paramset *ps, const char *name, const int **va
 {
     mt_error_clear(err);
     const mt_param *p;
-    mt_status st = lookup(ps, name, MT_PARAM_INTEGER, 0, &p, err);
+    mt_status st = find_typed(ps, name, MT_PARAM_INTEGER, 0, &p, err);
     *values = p ? p->ints : NULL;
     *count = p ? p->nvalues : 0;
     return st;

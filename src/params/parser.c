@@ -421,7 +421,7 @@ static mt_status deliver(source *S, mt_error *err)
     return rc;
 }
 
-static mt_status statement(source *S, mt_error *err)
+static mt_status read_statement(source *S, mt_error *err)
 {
     char buf[160];
     mt_status st;
@@ -473,7 +473,7 @@ static mt_status parse_source(parser *P, const char *text, size_t len, const cha
     S.chain = chain;
     mt__lexer_init(&S.lx, text, len, name, first_line);
     st = next(&S, err);
-    while (st == MT_OK && S.tok.kind != MT_TOK_EOF) st = statement(&S, err);
+    while (st == MT_OK && S.tok.kind != MT_TOK_EOF) st = read_statement(&S, err);
     reset_statement(&S);
     clear_values(&S);
     mt__free(S.nums);

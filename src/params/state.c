@@ -123,7 +123,7 @@ static int transform_finite(const mt_transform *t)
 }
 
 /* curTransform[i] = curTransform[i] * x (or = x) for the active times. */
-static mt_status apply(mt_state *s, const mt_statement *st, const mt_transform *x, int replace,
+static mt_status apply_transform(mt_state *s, const mt_statement *st, const mt_transform *x, int replace,
                        mt_error *err)
 {
     mt_transform nt[2];
@@ -170,24 +170,24 @@ static mt_status do_transform(mt_state *s, const mt_statement *st, mt_error *err
     mt_status rc;
     if (strcmp(d, "Identity") == 0) {
         x = mt_transform_identity();
-        return apply(s, st, &x, 1, err);
+        return apply_transform(s, st, &x, 1, err);
     }
     if (strcmp(d, "Translate") == 0) {
         x = mt_translate(mt_v3(arg(st, 0), arg(st, 1), arg(st, 2)));
-        return apply(s, st, &x, 0, err);
+        return apply_transform(s, st, &x, 0, err);
     }
     if (strcmp(d, "Scale") == 0) {
         if (arg(st, 0) == 0 || arg(st, 1) == 0 || arg(st, 2) == 0)
             return mt__state_fail(st, err, MT_ERR_INVALID,
                                   "Scale by zero: the transform would have no inverse");
         x = mt_scale(arg(st, 0), arg(st, 1), arg(st, 2));
-        return apply(s, st, &x, 0, err);
+        return apply_transform(s, st, &x, 0, err);
     }
     if (strcmp(d, "Rotate") == 0) {
         if (arg(st, 1) == 0 && arg(st, 2) == 0 && arg(st, 3) == 0)
             return mt__state_fail(st, err, MT_ERR_INVALID, "Rotate about a zero axis");
         x = mt_rotate(arg(st, 0), mt_v3(arg(st, 1), arg(st, 2), arg(st, 3)));
-        return apply(s, st, &x, 0, err);
+        return apply_transform(s, st, &x, 0, err);
     }
     if (strcmp(d, "LookAt") == 0) {
         mt_error why;
@@ -196,11 +196,11 @@ static mt_status do_transform(mt_state *s, const mt_statement *st, mt_error *err
                        mt_v3(arg(st, 3), arg(st, 4), arg(st, 5)),
                        mt_v3(arg(st, 6), arg(st, 7), arg(st, 8)), &x, &why) != MT_OK)
             return mt__state_fail(st, err, MT_ERR_INVALID, "%s", why.message);
-        return apply(s, st, &x, 0, err);
+        return apply_transform(s, st, &x, 0, err);
     }
     rc = matrix_arg(st, &x, err);
     if (rc != MT_OK) return rc;
-    return apply(s, st, &x, strcmp(d, "Transform") == 0, err);
+    return apply_transform(s, st, &x, strcmp(d, "Transform") == 0, err);
 }
 
 static struct mt__coordsys *find_coordsys(const mt_state *s, const char *name)
@@ -249,7 +249,7 @@ static mt_status do_coordsys(mt_state *s, const mt_statement *st, mt_error *err)
 
 /* ---- the stack ----------------------------------------------------------- */
 
-static mt_status push(mt_state *s, const mt_statement *st, frame_kind kind, mt_error *err)
+static mt_status push_frame(mt_state *s, const mt_statement *st, frame_kind kind, mt_error *err)
 {
     struct mt__frame *f = mt__grow(s->stack, &s->cap, s->depth + 1, sizeof *f);
     if (!f) return mt__state_fail(st, err, MT_ERR_NOMEM, "out of memory");
@@ -292,7 +292,7 @@ static mt_status do_object_begin(mt_state *s, const mt_statement *st, mt_error *
             return mt__state_fail(st, err, MT_ERR_INVALID,
                                   "ObjectBegin inside the object begun at %s:%d",
                                   s->stack[i].file ? s->stack[i].file : "?", s->stack[i].line);
-    return push(s, st, FRAME_OBJECT, err);
+    return push_frame(s, st, FRAME_OBJECT, err);
 }
 
 /* pbrt-v2 pbrtWorldEnd: warns of open blocks, then starts afresh. */
@@ -345,7 +345,7 @@ typedef struct verb {
 
 static mt_status v_push_attr(mt_state *s, const mt_statement *st, mt_error *err)
 {
-    return push(s, st, FRAME_ATTRIBUTE, err);
+    return push_frame(s, st, FRAME_ATTRIBUTE, err);
 }
 static mt_status v_pop_attr(mt_state *s, const mt_statement *st, mt_error *err)
 {
@@ -353,7 +353,7 @@ static mt_status v_pop_attr(mt_state *s, const mt_statement *st, mt_error *err)
 }
 static mt_status v_push_xf(mt_state *s, const mt_statement *st, mt_error *err)
 {
-    return push(s, st, FRAME_TRANSFORM, err);
+    return push_frame(s, st, FRAME_TRANSFORM, err);
 }
 static mt_status v_pop_xf(mt_state *s, const mt_statement *st, mt_error *err)
 {

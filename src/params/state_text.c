@@ -9,14 +9,14 @@
 #include "params/state_internal.h"
 #include "params/state_text.h"
 
-typedef struct apply_ctx {
+typedef struct text_apply_ctx {
     mt_state *s;
     mt__text_summary *sum;
-} apply_ctx;
+} text_apply_ctx;
 
 static mt_status apply_one(void *ctx, const mt_statement *st, mt_error *err)
 {
-    apply_ctx *a = ctx;
+    text_apply_ctx *a = ctx;
     int handled = 0;
     mt_status rc;
     rc = mt_state_apply(a->s, st, &handled, err);
@@ -46,7 +46,7 @@ mt_status mt__state_apply_text(mt_state *s, const char *text, mt__text_summary *
 {
     mt_parse_options opt;
     mt__text_summary none;
-    apply_ctx a;
+    text_apply_ctx a;
     if (!s || !text) return mt_error_set(err, MT_ERR_INVALID, "no %s given", s ? "text" : "state");
     memset(&opt, 0, sizeof opt);
     opt.warn = s->warn;

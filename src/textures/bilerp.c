@@ -1,6 +1,6 @@
 /* pbrt-v2 BilerpTexture (textures/bilerp.h): the bilinear interpolation of
  * v00, v01, v10, v11 at the mapped (s, t). */
-#include "textures/tex.h"
+#include "textures/create.h"
 
 typedef struct bilerp {
     mt_texture base;
@@ -40,7 +40,11 @@ static mt_rgb bilerp_rgb(const mt_texture *t, const mt_diffgeom *dg)
     return mt_rgb_make(lerp4(w, b, 0), lerp4(w, b, 1), lerp4(w, b, 2));
 }
 
-static const mt_texture_ops bilerp_ops = {"bilerp", bilerp_float, bilerp_rgb, NULL};
+static const mt_texture_ops bilerp_ops = {
+    .name = "bilerp",
+    .eval_float = bilerp_float,
+    .eval_rgb = bilerp_rgb,
+};
 
 mt_texture *mt__tex_bilerp(int is_float, const mt_map2d *map, const mt_rgb v[4], mt_mode mode,
                            mt_error *err)
@@ -57,3 +61,32 @@ mt_texture *mt__tex_bilerp(int is_float, const mt_map2d *map, const mt_rgb v[4],
     for (i = 0; i < 4; ++i) b->v[i] = v[i];
     return &b->base;
 }
+
+static mt_texture *bilerp_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+                          mt_error *err)
+{
+    static const char *const names[4] = {"v00", "v01", "v10", "v11"};
+    static const mt_real defs[4] = {0, 1, 0, 1};
+    mt_map2d m;
+    mt_rgb v[4];
+    int i;
+    if (mt__tex_mapping2d(tex2world, tp, "bilerp", &m, err)) return NULL;
+    for (i = 0; i < 4; ++i)
+        if (mt__tex_value(tp, is_float, names[i], defs[i], &v[i], err)) return NULL;
+    return mt__tex_bilerp(is_float, &m, v, tp->mode, err);
+}
+
+static const mt__texture_param_doc bilerp_params[] = {
+    {"v00", "finite", "the value at (u, v) = (0, 0)"},
+    {"v01", "finite", "the value at (0, 1)"},
+    {"v10", "finite", "the value at (1, 0)"},
+    {"v11", "finite", "the value at (1, 1)"},
+};
+
+const mt_texture_kind mt_bilerp_texture = {
+    .name = "bilerp",
+    .has_float = 1,
+    .create = bilerp_create,
+    .params = bilerp_params,
+    .nparams = MT_COUNT(bilerp_params),
+};

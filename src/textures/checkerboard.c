@@ -7,7 +7,7 @@
  * tex2's checks, from the integral of the odd-check indicator.
  */
 #include "textures/noise.h"
-#include "textures/tex.h"
+#include "textures/create.h"
 
 typedef struct checker {
     mt__pair_tex pair;
@@ -84,8 +84,12 @@ static mt_real weight(const mt_texture *t, const mt_diffgeom *dg)
     return c->dim == 2 ? weight2d(c, dg) : weight3d(c, dg);
 }
 
-static const mt_texture_ops checker_ops = {"checkerboard", mt__pair_pick_float, mt__pair_pick_rgb,
-                                           mt__pair_finalize};
+static const mt_texture_ops checker_ops = {
+    .name = "checkerboard",
+    .eval_float = mt__pair_pick_float,
+    .eval_rgb = mt__pair_pick_rgb,
+    .finalize = mt__pair_finalize,
+};
 
 static checker *checker_alloc(int is_float, mt_texture *tex1, mt_texture *tex2, mt_mode mode,
                               mt_error *err)
@@ -118,3 +122,48 @@ mt_texture *mt__tex_checker3d(int is_float, const mt_map3d *map, mt_texture *tex
     c->map3 = *map;
     return &c->pair.base;
 }
+
+static mt_texture *checkerboard_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+                          mt_error *err)
+{
+    static const char *const aamodes[] = {"none", "closedform", NULL};
+    mt__tex_children c;
+    mt_texture *t = NULL;
+    mt_map2d m2;
+    mt_map3d m3;
+    int dim, aa;
+    if (mt_texparams_int(tp, "dimension", 2, &dim, err)) return NULL;
+    if (dim != 2 && dim != 3) {
+        mt_error_param(err, MT_ERR_INVALID, "dimension",
+                       "checkerboard texture: %d dimensions (2 or 3 are supported)", dim);
+        return NULL;
+    }
+    if (!mt__tex_children_get(tp, is_float, "tex1", 1, "tex2", 0, &c, err)) {
+        mt__tex_children_put(&c);
+        return NULL;
+    }
+    if (dim == 3) {
+        m3 = mt__map3d(tex2world, tp->mode);
+        t = mt__tex_checker3d(is_float, &m3, c.a, c.b, tp->mode, err);
+    } else if (!mt__tex_mapping2d(tex2world, tp, "checkerboard", &m2, err) &&
+               (aa = mt__tex_choice(tp, "aamode", "closedform", aamodes, "checkerboard", err)) >= 0) {
+        t = mt__tex_checker2d(is_float, &m2, c.a, c.b, aa, tp->mode, err);
+    }
+    mt__tex_children_put(&c);
+    return t;
+}
+
+static const mt__texture_param_doc checkerboard_params[] = {
+    {"dimension", "2 or 3", "2: on (u, v); 3: in space (no mapping, no antialiasing)"},
+    {"tex1", "any", "the even squares"},
+    {"tex2", "any", "the odd squares"},
+    {"aamode", "none or closedform", "2D antialiasing: none, or the closed-form box filter"},
+};
+
+const mt_texture_kind mt_checkerboard_texture = {
+    .name = "checkerboard",
+    .has_float = 1,
+    .create = checkerboard_create,
+    .params = checkerboard_params,
+    .nparams = MT_COUNT(checkerboard_params),
+};

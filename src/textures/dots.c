@@ -9,7 +9,7 @@
  * MT_FIX_DOTS_INSIDE puts "inside" on the dots.
  */
 #include "textures/noise.h"
-#include "textures/tex.h"
+#include "textures/create.h"
 
 typedef struct dots {
     mt__pair_tex pair; /* tex1 around the dots, tex2 on them */
@@ -17,7 +17,7 @@ typedef struct dots {
 } dots;
 
 /* 1 on a dot, 0 around the dots. */
-static mt_real inside(const mt_texture *t, const mt_diffgeom *dg)
+static mt_real on_dot(const mt_texture *t, const mt_diffgeom *dg)
 {
     mt_st st;
     mt_real scell, tcell;
@@ -38,8 +38,12 @@ static mt_real inside(const mt_texture *t, const mt_diffgeom *dg)
     return 0;
 }
 
-static const mt_texture_ops dots_ops = {"dots", mt__pair_pick_float, mt__pair_pick_rgb,
-                                        mt__pair_finalize};
+static const mt_texture_ops dots_ops = {
+    .name = "dots",
+    .eval_float = mt__pair_pick_float,
+    .eval_rgb = mt__pair_pick_rgb,
+    .finalize = mt__pair_finalize,
+};
 
 mt_texture *mt__tex_dots(int is_float, const mt_map2d *map, mt_texture *inside_tex,
                          mt_texture *outside_tex, mt_mode mode, mt_error *err)
@@ -53,7 +57,33 @@ mt_texture *mt__tex_dots(int is_float, const mt_map2d *map, mt_texture *inside_t
         d = mt__pair_alloc(sizeof *d, &dots_ops, is_float, inside_tex, "inside", outside_tex,
                            "outside", mode, err);
     if (!d) return NULL;
-    d->pair.weight = inside;
+    d->pair.weight = on_dot;
     d->map = *map;
     return &d->pair.base;
 }
+
+static mt_texture *dots_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+                          mt_error *err)
+{
+    mt__tex_children c;
+    mt_map2d m;
+    mt_texture *t = NULL;
+    if (mt__tex_mapping2d(tex2world, tp, "dots", &m, err)) return NULL;
+    if (mt__tex_children_get(tp, is_float, "inside", 1, "outside", 0, &c, err))
+        t = mt__tex_dots(is_float, &m, c.a, c.b, tp->mode, err);
+    mt__tex_children_put(&c);
+    return t;
+}
+
+static const mt__texture_param_doc dots_params[] = {
+    {"inside", "any", "inside the dots"},
+    {"outside", "any", "between the dots"},
+};
+
+const mt_texture_kind mt_dots_texture = {
+    .name = "dots",
+    .has_float = 1,
+    .create = dots_create,
+    .params = dots_params,
+    .nparams = MT_COUNT(dots_params),
+};

@@ -72,7 +72,7 @@ mt_status mt__map2d_check(const mt_map2d *m, const char *cls, mt_error *err)
 /* The direction of p from the texture-space origin. pbrt-v2 normalizes it
  * (NaN at the origin); materia keeps a vector too short to normalize as it
  * is, so the origin maps to the direction (0, 0, 0) in both modes. */
-static mt_vec3 direction(const mt_map2d *m, mt_vec3 p)
+static mt_vec3 map_direction(const mt_map2d *m, mt_vec3 p)
 {
     mt_vec3 q = m->identity ? p : mt_transform_point(&m->world2tex, p);
     mt_real len = mt_v3_len(q);
@@ -83,7 +83,7 @@ static mt_vec3 direction(const mt_map2d *m, mt_vec3 p)
 /* pbrt-v2 SphericalMapping2D::sphere: s = theta / pi, t = phi / 2pi. */
 static void sphere(const mt_map2d *m, mt_vec3 p, mt_real *s, mt_real *t)
 {
-    mt_vec3 v = direction(m, p);
+    mt_vec3 v = map_direction(m, p);
     mt_real theta = mt_acos(mt_clamp(v.z, -1, 1)); /* SphericalTheta */
     mt_real phi = mt_atan2(v.y, v.x);              /* SphericalPhi */
     if (phi < 0) phi += 2 * MT_PI;
@@ -97,7 +97,7 @@ static void sphere(const mt_map2d *m, mt_vec3 p, mt_real *s, mt_real *t)
  * MT_FIX_CYLINDRICAL_AXIS takes phi = 0 there. */
 static void cylinder(const mt_map2d *m, mt_vec3 p, mt_real *s, mt_real *t)
 {
-    mt_vec3 v = direction(m, p);
+    mt_vec3 v = map_direction(m, p);
     mt_real phi = mt_atan2(v.y, v.x);
     if ((m->mode & MT_FIX_CYLINDRICAL_AXIS) && v.x == 0 && v.y == 0) phi = 0;
     *s = (MT_PI + phi) / (2 * MT_PI);

@@ -12,7 +12,7 @@
  * With pbrt-v2's table c[6] = c[8], so the two modes agree at t = 1.
  */
 #include "textures/noise.h"
-#include "textures/tex.h"
+#include "textures/create.h"
 
 #define NC 9
 #define NSEG (NC - 3)
@@ -68,7 +68,11 @@ static mt_rgb marble_rgb(const mt_texture *tex, const mt_diffgeom *dg)
     return mt_rgb_make(bezier(first, i3, t, 0), bezier(first, i3, t, 1), bezier(first, i3, t, 2));
 }
 
-static const mt_texture_ops marble_ops = {"marble", marble_float, marble_rgb, NULL};
+static const mt_texture_ops marble_ops = {
+    .name = "marble",
+    .eval_float = marble_float,
+    .eval_rgb = marble_rgb,
+};
 
 mt_texture *mt__tex_marble(const mt_map3d *map, int octaves, mt_real roughness, mt_real scale,
                            mt_real variation, mt_mode mode, mt_error *err)
@@ -83,3 +87,28 @@ mt_texture *mt__tex_marble(const mt_map3d *map, int octaves, mt_real roughness, 
     m->variation = variation;
     return &m->noise.base;
 }
+
+static mt_texture *marble_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+                          mt_error *err)
+{
+    mt_map3d m = mt__map3d(tex2world, tp->mode);
+    mt_real rough, scale, variation;
+    int oct;
+    if (mt__tex_octaves(tp, &oct, &rough, err) || mt_texparams_float(tp, "scale", 1, &scale, err) ||
+        mt_texparams_float(tp, "variation", (mt_real)0.2, &variation, err))
+        return NULL;
+    return mt__tex_marble(&m, oct, rough, scale, variation, tp->mode, err);
+}
+
+static const mt__texture_param_doc marble_params[] = {
+    {"scale", "finite", "the point's coordinates times scale"},
+    {"variation", "finite", "the strength of the noise in the marble's bands"},
+};
+
+const mt_texture_kind mt_marble_texture = {
+    .name = "marble",
+    .has_float = 0,
+    .create = marble_create,
+    .params = marble_params,
+    .nparams = MT_COUNT(marble_params),
+};

@@ -3,6 +3,7 @@
  * mt_real with pbrt-v2's order of operations and float constants.
  */
 #include "textures/noise.h"
+#include "textures/tex.h"
 
 /* Ken Perlin's permutation of 0..255, as pbrt-v2's NoisePerm lists it
  * (texture.cpp; pbrt-v2 stores it twice so that sums of two entries index
@@ -58,7 +59,7 @@ static mt_real grad(int x, int y, int z, mt_real dx, mt_real dy, mt_real dz)
 }
 
 /* pbrt-v2 NoiseWeight: the quintic 6t^5 - 15t^4 + 10t^3. */
-static mt_real weight(mt_real t)
+static mt_real fade_weight(mt_real t)
 {
     mt_real t3 = t * t * t;
     mt_real t4 = t3 * t;
@@ -85,9 +86,9 @@ mt_real mt__noise(mt_real x, mt_real y, mt_real z)
     w011 = grad(ix, iy + 1, iz + 1, dx, dy - 1, dz - 1);
     w111 = grad(ix + 1, iy + 1, iz + 1, dx - 1, dy - 1, dz - 1);
     /* trilinear interpolation with the quintic weights (pbrt-v2 Lerp) */
-    wx = weight(dx);
-    wy = weight(dy);
-    wz = weight(dz);
+    wx = fade_weight(dx);
+    wy = fade_weight(dy);
+    wz = fade_weight(dz);
     x00 = mt_lerp(wx, w000, w100);
     x10 = mt_lerp(wx, w010, w110);
     x01 = mt_lerp(wx, w001, w101);
@@ -110,7 +111,7 @@ static mt_real smooth_step(mt_real lo, mt_real hi, mt_real value)
 }
 
 /* pbrt-v2 pbrt.h Log2: logf(x) times the float 1 / logf(2). */
-static mt_real log2_pbrt(mt_real x) { return mt_log(x) * ((mt_real)1 / mt_log((mt_real)2)); }
+static mt_real noise_log2(mt_real x) { return mt_log(x) * ((mt_real)1 / mt_log((mt_real)2)); }
 
 /* The octave count: -1 - log2(s2) / 2 clamped to [0, maxOctaves], s2 the
  * larger squared footprint vector. The pbrt-v2 sources in the project's
@@ -125,7 +126,7 @@ mt_real mt__noise_octaves(mt_vec3 dpdx, mt_vec3 dpdy, int max_octaves, int *whol
 {
     mt_real a = mt_v3_len2(dpdx), b = mt_v3_len2(dpdy);
     mt_real s2 = a < b ? b : a; /* std::max */
-    mt_real f = -1 - (mt_real)0.5 * log2_pbrt(s2), foct;
+    mt_real f = -1 - (mt_real)0.5 * noise_log2(s2), foct;
     /* An overflowing (or NaN) footprint is as wide as can be: no octave. */
     if (!(s2 <= MT_REAL_MAX)) f = 0;
     /* pbrt's Clamp(f, 0, maxOctaves): the lower bound tested first */
@@ -167,4 +168,29 @@ mt_real mt__turbulence(mt_vec3 p, mt_vec3 dpdx, mt_vec3 dpdy, mt_real omega, int
     /* pbrt-v2: "add in value to account for average value of fabsf(Noise())
      * (~0.2) for the remaining octaves" */
     return sum + ((mt_real)max_octaves - foct) * (mt_real)0.2;
+}
+
+/* --- the layout of the textures made of noise (fbm, wrinkled, windy,
+ * marble: textures/tex.h) --- */
+
+void *mt__noise_alloc(size_t size, const mt_texture_ops *ops, int is_float, const mt_map3d *map,
+                      int octaves, mt_real roughness, mt__octave_fn sum, mt_mode mode,
+                      mt_error *err)
+{
+    mt__noise_tex *n;
+    if (!mt__tex_check_octaves(octaves, roughness, ops->name, err)) return NULL;
+    n = mt__texture_alloc(size, ops, is_float, mode, err);
+    if (!n) return NULL;
+    n->map = *map;
+    n->octaves = octaves;
+    n->omega = roughness;
+    n->sum = sum;
+    return n;
+}
+
+mt_real mt__noise_tex_float(const mt_texture *t, const mt_diffgeom *dg)
+{
+    const mt__noise_tex *n = (const mt__noise_tex *)t;
+    mt_vec3 dpdx, dpdy, p = mt__map3d_apply(&n->map, dg, &dpdx, &dpdy);
+    return n->sum(p, dpdx, dpdy, n->omega, n->octaves);
 }

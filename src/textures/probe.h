@@ -17,11 +17,4 @@ void mt__texparams_set_probe(mt__texparams_probe_fn fn, void *ctx);
 /* Reports a lookup to the probe, when one is set. */
 void mt__texparams_probe(const char *name, const char *type, const char *def, const char *const *choices);
 
-/* The texture creators' descriptions of their parameters (registry.c). */
-typedef struct mt__texture_param_doc {
-    const char *cls; /* NULL: every class that reads it */
-    const char *name, *range, *what;
-} mt__texture_param_doc;
-const mt__texture_param_doc *mt__texture_param_docs(int *count);
-
 #endif

@@ -1,7 +1,8 @@
 /*
  * Internal: the texture object, its operations table, and the constructors
- * of every class from plain values (the creators in registry.c read a
- * statement's parameters and call these; tests call them directly).
+ * of every class from plain values (each class's creator, textures/kind.h,
+ * reads a statement's parameters and calls its constructor; tests call them
+ * directly).
  *
  * A texture is a struct whose first member is mt_texture. Each pbrt-v2 class
  * has one operations table (eval_float, eval_rgb, finalize); the handle's

@@ -14,6 +14,7 @@
 #include "textures/probe.h"
 #include "textures/tex.h"
 #include "params/paramset_internal.h"
+#include "textures/create.h"
 
 static mt__texparams_probe_fn probe_fn;
 static void *probe_ctx;
@@ -46,7 +47,7 @@ static void probe_triple(const char *name, const char *type, const mt_real *v)
     probe_fn(probe_ctx, name, type, buf, NULL);
 }
 
-static const mt_paramset *source(const mt_texparams *tp, const char *name)
+static const mt_paramset *param_source(const mt_texparams *tp, const char *name)
 {
     if (tp->geom && mt_paramset_find(tp->geom, name)) {
         if (tp->material) mt_paramset_mark_used(tp->material, name);
@@ -60,7 +61,7 @@ mt_status mt_texparams_float(const mt_texparams *tp, const char *name, mt_real d
 {
     mt_error_clear(err);
     probe_real(name, "float", def);
-    return mt_params_float(source(tp, name), name, def, out, err);
+    return mt_params_float(param_source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_int(const mt_texparams *tp, const char *name, int def, int *out,
@@ -68,7 +69,7 @@ mt_status mt_texparams_int(const mt_texparams *tp, const char *name, int def, in
 {
     mt_error_clear(err);
     probe_real(name, "integer", (mt_real)def);
-    return mt_params_int(source(tp, name), name, def, out, err);
+    return mt_params_int(param_source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_bool(const mt_texparams *tp, const char *name, int def, int *out,
@@ -76,7 +77,7 @@ mt_status mt_texparams_bool(const mt_texparams *tp, const char *name, int def, i
 {
     mt_error_clear(err);
     mt__texparams_probe(name, "bool", def ? "true" : "false", NULL);
-    return mt_params_bool(source(tp, name), name, def, out, err);
+    return mt_params_bool(param_source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_string(const mt_texparams *tp, const char *name, const char *def,
@@ -84,7 +85,7 @@ mt_status mt_texparams_string(const mt_texparams *tp, const char *name, const ch
 {
     mt_error_clear(err);
     mt__texparams_probe(name, "string", def, NULL);
-    return mt_params_string(source(tp, name), name, def, out, err);
+    return mt_params_string(param_source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_filename(const mt_texparams *tp, const char *name, const char *def,
@@ -92,7 +93,7 @@ mt_status mt_texparams_filename(const mt_texparams *tp, const char *name, const 
 {
     mt_error_clear(err);
     mt__texparams_probe(name, "string", def, NULL);
-    return mt_params_filename(source(tp, name), name, def, out, size, err);
+    return mt_params_filename(param_source(tp, name), name, def, out, size, err);
 }
 
 mt_status mt_texparams_vector(const mt_texparams *tp, const char *name, mt_vec3 def,
@@ -102,7 +103,7 @@ mt_status mt_texparams_vector(const mt_texparams *tp, const char *name, mt_vec3 
     mt_error_clear(err);
     v[0] = def.x, v[1] = def.y, v[2] = def.z;
     probe_triple(name, "vector", v);
-    return mt_params_vector(source(tp, name), name, def, out, err);
+    return mt_params_vector(param_source(tp, name), name, def, out, err);
 }
 
 mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_rgb def, mt_rgb *out,
@@ -110,7 +111,7 @@ mt_status mt_texparams_rgb(const mt_texparams *tp, const char *name, mt_rgb def,
 {
     mt_error_clear(err);
     probe_triple(name, "rgb", def.c);
-    return mt_params_rgb(source(tp, name), name, def, out, err);
+    return mt_params_rgb(param_source(tp, name), name, def, out, err);
 }
 
 /* The "texture" parameter called name, geometry first (pbrt-v2
@@ -203,12 +204,33 @@ mt_status mt_texparams_float_texture_opt(const mt_texparams *tp, const char *nam
     if (st || found) return st;
     /* pbrt-v2 reads only a texture here and ignores a value of another type
      * (then reported unused); materia says so */
-    list = source(tp, name);
+    list = param_source(tp, name);
     p = list ? mt_paramset_find(list, name) : NULL;
     if (!p) return MT_OK;
     st = mt_error_param(err, MT_ERR_INVALID, name,
                         "is declared \"%s %s\" but must be a \"texture\" naming a float texture",
                         p->type_name, name);
     mt_error_locate(err, p->file, p->line, p->column);
+    return st;
+}
+
+/* The readers of a value that is a float or a spectrum as the texture being
+ * made is (textures/create.h): here, beside the readers they call, so that
+ * the constant texture, which every material links, needs nothing more. */
+mt_texture *mt__tex_child(const mt_texparams *tp, int is_float, const char *name, mt_real def,
+                          mt_error *err)
+{
+    if (is_float) return mt_texparams_float_texture(tp, name, def, err);
+    return mt_texparams_spectrum_texture(tp, name, mt_rgb_gray(def), err);
+}
+
+mt_status mt__tex_value(const mt_texparams *tp, int is_float, const char *name, mt_real def,
+                        mt_rgb *out, mt_error *err)
+{
+    mt_real v = def;
+    mt_status st;
+    if (!is_float) return mt_texparams_rgb(tp, name, mt_rgb_gray(def), out, err);
+    st = mt_texparams_float(tp, name, def, &v, err);
+    *out = mt_rgb_gray(v);
     return st;
 }

@@ -1,12 +1,33 @@
 /*
- * The texture handle: allocation, reference counting, evaluation through
+ * The texture handle: creation from a kind (registry.c finds kinds by
+ * name), allocation, reference counting, evaluation through
  * the class's operations table, and the table of named textures with its two
  * namespaces (pbrt-v2 api.cpp GraphicsState floatTextures and
  * spectrumTextures).
  */
 #include <string.h>
 #include "core/alloc.h"
+#include "textures/kind.h"
 #include "textures/tex.h"
+
+mt_texture *mt_texture_create_kind(const mt_texture_kind *k, int is_float, const mt_transform *tex2world,
+                                   const mt_texparams *tp, mt_error *err)
+{
+    mt_transform id = mt_transform_identity();
+    mt_error_clear(err);
+    if (!k || !tp) {
+        mt_error_set(err, MT_ERR_INVALID, "texture: missing kind or parameters");
+        return NULL;
+    }
+    if (is_float && !k->has_float) {
+        mt_error_set(err, MT_ERR_INVALID, "pbrt-v2 has no float \"%s\" texture", k->name);
+        return NULL;
+    }
+    return k->create(is_float ? 1 : 0, tex2world ? tex2world : &id, tp, err);
+}
+
+const char *mt_texture_kind_name(const mt_texture_kind *k) { return k->name; }
+int mt_texture_kind_has_float(const mt_texture_kind *k) { return k->has_float; }
 
 void *mt__texture_alloc(size_t size, const mt_texture_ops *ops, int is_float, mt_mode mode,
                         mt_error *err)
@@ -113,13 +134,13 @@ int mt__tex_check_octaves(int octaves, mt_real roughness, const char *cls, mt_er
 
 /* --- named textures --- */
 
-typedef struct entry {
+typedef struct table_entry {
     char *name;
     mt_texture *tex;
-} entry;
+} table_entry;
 
 typedef struct space {
-    entry *e;
+    table_entry *e;
     int n, cap;
 } space;
 
@@ -155,7 +176,7 @@ static int space_copy(space *dst, const space *src)
     dst->n = dst->cap = 0;
     dst->e = NULL;
     if (!src->n) return 1;
-    dst->e = mt__malloc((size_t)src->n * sizeof(entry));
+    dst->e = mt__malloc((size_t)src->n * sizeof(table_entry));
     if (!dst->e) return 0;
     dst->cap = src->n;
     for (i = 0; i < src->n; ++i) {
@@ -178,7 +199,7 @@ mt_texture_table *mt_texture_table_clone(const mt_texture_table *t)
     return c;
 }
 
-static entry *space_find(const space *s, const char *name)
+static table_entry *space_find(const space *s, const char *name)
 {
     int i;
     for (i = 0; i < s->n; ++i)
@@ -190,7 +211,7 @@ mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture
                                mt_error *err)
 {
     space *s;
-    entry *e;
+    table_entry *e;
     char *copy;
     mt_error_clear(err);
     if (!t || !name || !tex)
@@ -205,7 +226,7 @@ mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture
     }
     if (s->n == s->cap) {
         int cap = s->cap ? 2 * s->cap : 8;
-        entry *grown = mt__realloc(s->e, (size_t)cap * sizeof(entry));
+        table_entry *grown = mt__realloc(s->e, (size_t)cap * sizeof(table_entry));
         if (!grown) return mt_error_set(err, MT_ERR_NOMEM, "out of memory naming texture \"%s\"", name);
         s->e = grown;
         s->cap = cap;
@@ -220,7 +241,7 @@ mt_status mt_texture_table_set(mt_texture_table *t, const char *name, mt_texture
 
 mt_texture *mt_texture_table_get(const mt_texture_table *t, const char *name, int is_float)
 {
-    const entry *e;
+    const table_entry *e;
     if (!t || !name) return NULL;
     e = space_find(&t->ns[is_float ? 1 : 0], name);
     return e ? e->tex : NULL;
@@ -265,26 +286,4 @@ mt_rgb mt__pair_pick_rgb(const mt_texture *t, const mt_diffgeom *dg)
 {
     const mt__pair_tex *p = (const mt__pair_tex *)t;
     return mt__tex_pick_rgb(p->weight(t, dg), p->tex1, p->tex2, dg);
-}
-
-void *mt__noise_alloc(size_t size, const mt_texture_ops *ops, int is_float, const mt_map3d *map,
-                      int octaves, mt_real roughness, mt__octave_fn sum, mt_mode mode,
-                      mt_error *err)
-{
-    mt__noise_tex *n;
-    if (!mt__tex_check_octaves(octaves, roughness, ops->name, err)) return NULL;
-    n = mt__texture_alloc(size, ops, is_float, mode, err);
-    if (!n) return NULL;
-    n->map = *map;
-    n->octaves = octaves;
-    n->omega = roughness;
-    n->sum = sum;
-    return n;
-}
-
-mt_real mt__noise_tex_float(const mt_texture *t, const mt_diffgeom *dg)
-{
-    const mt__noise_tex *n = (const mt__noise_tex *)t;
-    mt_vec3 dpdx, dpdy, p = mt__map3d_apply(&n->map, dg, &dpdx, &dpdy);
-    return n->sum(p, dpdx, dpdy, n->omega, n->octaves);
 }

@@ -1,6 +1,6 @@
 /* pbrt-v2 UVTexture (textures/uv.h): the fractional parts of the mapped
  * (s, t) as red and green. Spectrum only, as in pbrt-v2. */
-#include "textures/tex.h"
+#include "textures/create.h"
 
 typedef struct uvtex {
     mt_texture base;
@@ -22,7 +22,11 @@ static mt_rgb uv_rgb(const mt_texture *t, const mt_diffgeom *dg)
     return mt_rgb_make(st.s - mt_floor(st.s), st.t - mt_floor(st.t), 0);
 }
 
-static const mt_texture_ops uv_ops = {"uv", uv_float, uv_rgb, NULL};
+static const mt_texture_ops uv_ops = {
+    .name = "uv",
+    .eval_float = uv_float,
+    .eval_rgb = uv_rgb,
+};
 
 mt_texture *mt__tex_uv(const mt_map2d *map, mt_mode mode, mt_error *err)
 {
@@ -33,3 +37,17 @@ mt_texture *mt__tex_uv(const mt_map2d *map, mt_mode mode, mt_error *err)
     u->map = *map;
     return &u->base;
 }
+
+static mt_texture *uv_create(int is_float, const mt_transform *tex2world, const mt_texparams *tp,
+                          mt_error *err)
+{
+    mt_map2d m;
+    if (mt__tex_mapping2d(tex2world, tp, "uv", &m, err)) return NULL;
+    return mt__tex_uv(&m, tp->mode, err);
+}
+
+const mt_texture_kind mt_uv_texture = {
+    .name = "uv",
+    .has_float = 0,
+    .create = uv_create,
+};

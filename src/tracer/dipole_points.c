@@ -194,7 +194,7 @@ static int has_bssrdf(const mt__prim_info *info)
     return info && info->material && mt_material_has_bssrdf(info->material);
 }
 
-static void push(struct cand_buf *b, const mt__ss_point *p)
+static void push_candidate(struct cand_buf *b, const mt__ss_point *p)
 {
     if (b->n == b->cap) {
         size_t cap = b->cap ? 2 * b->cap : 4096;
@@ -237,7 +237,7 @@ static void trace_path(const deposit_job *job, long k, struct cand_buf *out)
                 c.p_error = sf.p_error;
                 c.ray_epsilon = sf.ray_epsilon;
                 c.next = -1;
-                push(out, &c);
+                push_candidate(out, &c);
             }
             u1 = mt_rng_uniform(&rng);
             u2 = mt_rng_uniform(&rng);
@@ -294,7 +294,7 @@ static mt_status trace_batch(deposit_job *job, mt_error *err)
     return MT_OK;
 }
 
-static double now_s(void)
+static double points_now_s(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
@@ -323,7 +323,7 @@ mt_status mt__dipole_deposit(const mt_scene *s, uint64_t seed, int nthreads, mt_
     size_t cap = 0;
     mt_status st = MT_OK;
     int repeated = 0, done = 0, i;
-    double t0 = now_s(), last = -1;
+    double t0 = points_now_s(), last = -1;
     mt_real area = MT_PI * (min_dist / 2) * (min_dist / 2), d2 = min_dist * min_dist;
     memset(&job, 0, sizeof job);
     job.s = s;
@@ -378,7 +378,7 @@ mt_status mt__dipole_deposit(const mt_scene *s, uint64_t seed, int nthreads, mt_
             done = 1;
         }
         if (o && o->stage) {
-            double t = now_s();
+            double t = points_now_s();
             if (done || t - last >= 0.25) {
                 double f = (double)d->max_repeated_fails / MT__DIPOLE_MAX_FAILS, el = t - t0;
                 o->stage(o->progress_ctx, "depositing points", done ? 1.0 : f, d->npts, el,

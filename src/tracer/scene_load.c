@@ -80,7 +80,7 @@ static int is_animated(const mt_state *st)
     return memcmp(mt_state_transform(st), mt_state_transform_end(st), sizeof(mt_transform)) != 0;
 }
 
-static mt_status fail(mt_error *err, mt_status st, const char *fmt, const char *a, const char *b)
+static mt_status load_fail(mt_error *err, mt_status st, const char *fmt, const char *a, const char *b)
 {
     return mt_error_set(err, st, fmt, a, b ? b : "");
 }
@@ -129,24 +129,24 @@ static mt_status check_option_type(const mt_statement *st, mt_error *err)
     static const char *const accel[] = {"bvh", "grid", "kdtree", NULL};
     const char *d = st->directive, *t = st->args[0].string;
     if (strcmp(d, "Camera") == 0 && !name_in(t, cameras))
-        return fail(err, MT_ERR_UNSUPPORTED, "Camera \"%s\" is not supported (perspective, orthographic)%s", t, NULL);
+        return load_fail(err, MT_ERR_UNSUPPORTED, "Camera \"%s\" is not supported (perspective, orthographic)%s", t, NULL);
     if (strcmp(d, "Film") == 0 && strcmp(t, "image") != 0)
-        return fail(err, MT_ERR_NOT_FOUND, "Film \"%s\" unknown (\"image\")%s", t, NULL);
+        return load_fail(err, MT_ERR_NOT_FOUND, "Film \"%s\" unknown (\"image\")%s", t, NULL);
     if (strcmp(d, "PixelFilter") == 0 && !name_in(t, filters))
-        return fail(err, MT_ERR_NOT_FOUND, "PixelFilter \"%s\" unknown (box, gaussian, mitchell, triangle, sinc)%s", t, NULL);
+        return load_fail(err, MT_ERR_NOT_FOUND, "PixelFilter \"%s\" unknown (box, gaussian, mitchell, triangle, sinc)%s", t, NULL);
     if (strcmp(d, "Sampler") == 0 && !name_in(t, samplers))
-        return fail(err, MT_ERR_NOT_FOUND, "Sampler \"%s\" unknown%s", t, NULL);
+        return load_fail(err, MT_ERR_NOT_FOUND, "Sampler \"%s\" unknown%s", t, NULL);
     if (strcmp(d, "SurfaceIntegrator") == 0 && !name_in(t, surf)) {
-        return fail(err, name_in(t, surf_v2) ? MT_ERR_UNSUPPORTED : MT_ERR_NOT_FOUND,
+        return load_fail(err, name_in(t, surf_v2) ? MT_ERR_UNSUPPORTED : MT_ERR_NOT_FOUND,
                     name_in(t, surf_v2) ? "SurfaceIntegrator \"%s\" is not supported (path, directlighting, dipolesubsurface)%s"
                                         : "SurfaceIntegrator \"%s\" unknown%s", t, NULL);
     }
     if (strcmp(d, "VolumeIntegrator") == 0 && !name_in(t, vol))
-        return fail(err, MT_ERR_NOT_FOUND, "VolumeIntegrator \"%s\" unknown (emission, single)%s", t, NULL);
+        return load_fail(err, MT_ERR_NOT_FOUND, "VolumeIntegrator \"%s\" unknown (emission, single)%s", t, NULL);
     if (strcmp(d, "Renderer") == 0 && strcmp(t, "sampler") != 0)
-        return fail(err, MT_ERR_UNSUPPORTED, "Renderer \"%s\" is not supported (\"sampler\")%s", t, NULL);
+        return load_fail(err, MT_ERR_UNSUPPORTED, "Renderer \"%s\" is not supported (\"sampler\")%s", t, NULL);
     if (strcmp(d, "Accelerator") == 0 && !name_in(t, accel))
-        return fail(err, MT_ERR_NOT_FOUND, "Accelerator \"%s\" unknown (bvh, grid, kdtree)%s", t, NULL);
+        return load_fail(err, MT_ERR_NOT_FOUND, "Accelerator \"%s\" unknown (bvh, grid, kdtree)%s", t, NULL);
     return MT_OK;
 }
 
@@ -276,16 +276,16 @@ static mt_status on_statement(void *ctx, const mt_statement *st, mt_error *err)
     snprintf(ld->last_file, sizeof ld->last_file, "%s", st->file ? st->file : "");
     ld->last_line = st->line;
     if (ld->phase == MT__PHASE_DONE)
-        return fail(err, MT_ERR_UNSUPPORTED,
+        return load_fail(err, MT_ERR_UNSUPPORTED,
                     "%s after WorldEnd: materia renders one WorldBegin/WorldEnd block%s", d, NULL);
     if (strcmp(d, "Volume") == 0 || strcmp(d, "ObjectBegin") == 0 || strcmp(d, "ObjectEnd") == 0 ||
         strcmp(d, "ObjectInstance") == 0)
-        return fail(err, MT_ERR_UNSUPPORTED, "%s is not supported by materia%s",
+        return load_fail(err, MT_ERR_UNSUPPORTED, "%s is not supported by materia%s",
                     d, d[0] == 'V' ? " (no participating media)" : " (no object instancing)");
     if (ld->phase == MT__PHASE_WORLD && name_in(d, options_only))
-        return fail(err, MT_ERR_INVALID, "%s is not allowed inside the world block%s", d, NULL);
+        return load_fail(err, MT_ERR_INVALID, "%s is not allowed inside the world block%s", d, NULL);
     if (ld->phase == MT__PHASE_OPTIONS && name_in(d, world_only))
-        return fail(err, MT_ERR_INVALID, "%s must be inside WorldBegin/WorldEnd%s", d, NULL);
+        return load_fail(err, MT_ERR_INVALID, "%s must be inside WorldBegin/WorldEnd%s", d, NULL);
     if ((slot = option_slot(ld, d)) != NULL && (rc = check_option_type(st, err)) != MT_OK) return rc;
     if (strcmp(d, "Camera") == 0 && is_animated(ld->state))
         return mt_error_set(err, MT_ERR_UNSUPPORTED, "Camera: animated transforms are not supported");
@@ -311,7 +311,7 @@ static mt_status on_statement(void *ctx, const mt_statement *st, mt_error *err)
     if (strcmp(d, "WorldEnd") == 0) return world_end(ld, err);
     if (strcmp(d, "LightSource") == 0) return do_light_source(ld, st, err);
     if (strcmp(d, "Shape") == 0) return do_shape(ld, st, err);
-    return fail(err, MT_ERR_UNSUPPORTED, "%s is not supported by materia%s", d, NULL);
+    return load_fail(err, MT_ERR_UNSUPPORTED, "%s is not supported by materia%s", d, NULL);
 }
 
 /* ---- scenes --------------------------------------------------------------- */

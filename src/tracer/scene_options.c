@@ -108,7 +108,7 @@ static mt_status build_camera(mt__loader *ld, mt_error *err)
 }
 
 static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
-static int round_up_pow2(int v)
+static int options_round_up_pow2(int v)
 {
     int p = 1;
     while (p < v && p < (1 << 24)) p <<= 1;
@@ -134,7 +134,7 @@ static mt_status build_sampler(mt__loader *ld, mt_error *err)
         TRY(o, mt_params_int(ps, "minsamples", 4, &lo, err));
         TRY(o, mt_params_int(ps, "maxsamples", 32, &spp, err));
         TRY(o, mt_params_string(ps, "method", "contrast", &method, err));
-        spp = round_up_pow2(spp);
+        spp = options_round_up_pow2(spp);
     } else {
         TRY(o, mt_params_int(ps, "pixelsamples", 4, &spp, err));
     }
@@ -144,7 +144,7 @@ static mt_status build_sampler(mt__loader *ld, mt_error *err)
     s->round_pow2 = strcmp(type, "lowdiscrepancy") == 0;
     if (s->round_pow2 && !is_pow2(spp)) {
         mt__loader_warn(ld, o->file, o->line, "Pixel samples being rounded up to power of 2");
-        spp = round_up_pow2(spp);
+        spp = options_round_up_pow2(spp);
     }
     s->spp = spp;
     s->sampler_name = mt__strdup(type);

@@ -108,3 +108,14 @@ const char *t_shared_dir(void)
         if (access(candidates[i], R_OK) == 0) return candidates[i];
     return NULL;
 }
+
+int t_has_format(const char *ext, const char *name)
+{
+    const char *list = mt_image_formats(), *p = list;
+    size_t n = strlen(ext);
+    for (; (p = strstr(p, ext)) != NULL; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == 0)) return 1;
+    t_skip(name, "this build of materia has no .%s files (built with make NO_%s=1)", ext,
+           !strcmp(ext, "exr") ? "EXR" : !strcmp(ext, "png") ? "PNG" : "?");
+    return 0;
+}

@@ -44,6 +44,12 @@ double t_reldiff(double a, double b, double floor);
 double t_ulps(mt_real a, mt_real b);
 /* The directory of the shared reference data, or NULL (tests say SKIP). */
 const char *t_shared_dir(void);
+/* 1 when this build reads and writes the image format ext ("exr", "png",
+ * "pfm": mt_image_formats); otherwise prints "SKIP name: ..." naming the
+ * build option that left it out and returns 0. A check that needs the
+ * format runs only when this is 1 (make check in a NO_EXR=1 or NO_PNG=1
+ * build says what it left out). */
+int t_has_format(const char *ext, const char *name);
 
 /* T_SANITIZED: 1 in an AddressSanitizer build (gcc's macro or clang's
  * feature test), where tests shrink their workloads. */
@@ -57,11 +63,5 @@ const char *t_shared_dir(void);
 #ifndef T_SANITIZED
 #define T_SANITIZED 0
 #endif
-
-/* The 11 material scenes that need no dipole integrator, by name (golden/
- * and ../shared/reference/scenes/ both have one per name). */
-#define T_MATERIAL_SCENES                                                                   \
-    {"matte", "plastic", "glass", "mirror", "metal", "shinymetal", "substrate", "translucent", \
-     "uber", "mix", "measured"}
 
 #endif

@@ -4,8 +4,9 @@
  * range, what it is; the parameters a creator reads itself; "bumpmap"), the
  * parameters every texture creator looks up with their types and defaults
  * (seen through the readers' probe, textures/probe.h, creating each class
- * with each choice of its string parameters) and their descriptions
- * (registry.c), and the named media of the subsurface material.
+ * with each choice of its string parameters) and their descriptions (each
+ * kind's own, textures/kind.h), and the named media of the subsurface
+ * material.
  *
  *   gen-reference              the reference on standard output (make reference)
  *   gen-reference --check FILE PASS when FILE is what would be written, and
@@ -17,6 +18,7 @@
 #include <string.h>
 #include "materials/material_impl.h"
 #include "materials/media.h"
+#include "textures/kind.h"
 #include "textures/probe.h"
 
 #define MAXP 48
@@ -101,21 +103,22 @@ static void create(const char *cls, int is_material, int is_float, const char *n
     mt_texture_table_destroy(tt);
 }
 
-static const mt__texture_param_doc *tex_doc(const char *cls, const char *name)
+/* The description of a parameter kind k reads: its own, else a shared
+ * reader's (textures/kind.h); *own tells which. */
+static const mt__texture_param_doc *tex_doc(const mt_texture_kind *k, const char *name, int *own)
 {
     int n, i;
-    const mt__texture_param_doc *d = mt__texture_param_docs(&n);
+    const mt__texture_param_doc *d = mt__texture_common_docs(&n);
+    for (i = 0; i < k->nparams; ++i)
+        if (!strcmp(k->params[i].name, name)) return *own = 1, &k->params[i];
     for (i = 0; i < n; ++i)
-        if (d[i].cls && !strcmp(d[i].cls, cls) && !strcmp(d[i].name, name)) return &d[i];
-    for (i = 0; i < n; ++i)
-        if (!d[i].cls && !strcmp(d[i].name, name)) return &d[i];
+        if (!strcmp(d[i].name, name)) return *own = 0, &d[i];
     return NULL;
 }
 
 static void materials(void)
 {
-    int n, i, j, k;
-    const char *const *types = mt_material_types(&n);
+    int n = mt_material_kind_count(), i, j, k;
     emit("## Materials\n\n"
          "Every material but `mix` also takes `\"texture bumpmap\"`, a float texture whose value displaces the\n"
          "surface along its normal for the shading frame (none by default, for every material, as in\n"
@@ -124,16 +127,17 @@ static void materials(void)
          "outside its range is an error when the material is created (the file, line and parameter are\n"
          "named); a texture that varies is evaluated where it is used.\n\n");
     for (i = 0; i < n; ++i) {
-        const mt_material_ops *ops = mt__material_ops(types[i]);
+        const mt_material_kind *ops = mt_material_kind_at(i);
+        const char *type = ops->type;
         mt_tex_slot slots[MT_MATERIAL_SLOTS];
         probe p;
-        if (!ops || ops->nslots > MT_MATERIAL_SLOTS) {
-            problem("no parameter table", types[i]);
+        if (ops->nslots > MT_MATERIAL_SLOTS) {
+            problem("too many parameters", type);
             continue;
         }
         if (ops->nslots) memcpy(slots, ops->slots, (size_t)ops->nslots * sizeof *slots);
         if (ops->defaults) ops->defaults(slots);
-        emit("### %s\n\n| parameter | kind | default | range | what |\n|---|---|---|---|---|\n", types[i]);
+        emit("### %s\n\n| parameter | kind | default | range | what |\n|---|---|---|---|---|\n", type);
         for (j = 0; j < ops->nslots; ++j) {
             const mt_tex_slot *s = &slots[j];
             if (s->is_float)
@@ -149,14 +153,14 @@ static void materials(void)
         emit("\n");
         /* every parameter the creator reads is in the tables */
         memset(&p, 0, sizeof p);
-        create(types[i], 1, 0, NULL, NULL, &p);
+        create(type, 1, 0, NULL, NULL, &p);
         for (k = 0; k < p.n; ++k) {
             int known = !strcmp(p.r[k].name, "bumpmap");
             for (j = 0; j < ops->nslots && !known; ++j) known = !strcmp(ops->slots[j].name, p.r[k].name);
             for (j = 0; j < ops->nother && !known; ++j) known = !strcmp(ops->other[j].name, p.r[k].name);
             if (!known) {
                 char what[96];
-                snprintf(what, sizeof what, "material %s reads a parameter its tables lack", types[i]);
+                snprintf(what, sizeof what, "material %s reads a parameter its tables lack", type);
                 problem(what, p.r[k].name);
             }
         }
@@ -165,27 +169,30 @@ static void materials(void)
 
 static void textures(void)
 {
-    int n, i, j, k, v, ndocs, *used;
-    const char *const *classes = mt_texture_classes(&n);
-    const mt__texture_param_doc *docs = mt__texture_param_docs(&ndocs);
-    used = calloc((size_t)ndocs, sizeof *used);
-    if (!used) exit(1);
+    int n = mt_texture_kind_count(), i, j, k, v, ncommon;
+    const mt__texture_param_doc *common = mt__texture_common_docs(&ncommon);
+    int common_used[32] = {0};
+    if (ncommon > 32) exit(1);
     emit("## Textures\n\n"
          "`Texture \"name\" \"float\"|\"color\" \"class\" parameters...`. A parameter of kind *texture* is a value\n"
          "or a named texture of the same kind (float or spectrum) as the one being declared; where the two\n"
          "kinds differ, the float kind is given first. Wrong values are errors when the texture is\n"
          "declared.\n\n");
     for (i = 0; i < n; ++i) {
+        const mt_texture_kind *kind_of = mt_texture_kind_at(i);
+        const char *cls = kind_of->name;
+        int own_used[32] = {0};
         probe p;
         int has_float;
+        if (kind_of->nparams > 32) exit(1);
         memset(&p, 0, sizeof p);
-        create(classes[i], 0, 0, NULL, NULL, &p);
-        create(classes[i], 0, 1, NULL, NULL, &p);
+        create(cls, 0, 0, NULL, NULL, &p);
+        create(cls, 0, 1, NULL, NULL, &p);
         /* each choice of a string parameter may read others (the planar mapping's v1, v2) */
         for (k = 0; k < p.n; ++k)
             for (j = 0; p.r[k].choices && p.r[k].choices[j]; ++j) {
-                create(classes[i], 0, 0, p.r[k].name, p.r[k].choices[j], &p);
-                create(classes[i], 0, 1, p.r[k].name, p.r[k].choices[j], &p);
+                create(cls, 0, 0, p.r[k].name, p.r[k].choices[j], &p);
+                create(cls, 0, 1, p.r[k].name, p.r[k].choices[j], &p);
             }
         {
             mt_error err;
@@ -194,29 +201,32 @@ static void textures(void)
             mt_texparams tp;
             mt_texture *t;
             tp.geom = NULL, tp.material = ps, tp.textures = tt, tp.mode = MT_MODE_PBRT_V2;
-            t = mt_texture_create(classes[i], 1, NULL, &tp, &err);
+            t = mt_texture_create(cls, 1, NULL, &tp, &err);
             has_float = t || !strstr(err.message, "no float");
             mt_texture_destroy(t);
             mt_paramset_destroy(ps);
             mt_texture_table_destroy(tt);
         }
-        emit("### %s (%s)\n\n", classes[i], has_float ? "float and color" : "color only");
+        emit("### %s (%s)\n\n", cls, has_float ? "float and color" : "color only");
         if (p.n == 0) {
             emit("No parameters.\n\n");
+            for (j = 0; j < kind_of->nparams; ++j) problem("a texture without parameters describes one", cls);
             continue;
         }
         emit("| parameter | kind | default | range | what |\n|---|---|---|---|---|\n");
         for (k = 0; k < p.n; ++k) {
             const rec *r = &p.r[k];
-            const mt__texture_param_doc *d = tex_doc(classes[i], r->name);
+            int own = 0;
+            const mt__texture_param_doc *d = tex_doc(kind_of, r->name, &own);
             char kind[96], def[112];
             if (!d) {
                 char what[96];
-                snprintf(what, sizeof what, "texture %s reads a parameter registry.c does not describe", classes[i]);
+                snprintf(what, sizeof what, "texture %s reads a parameter its kind does not describe", cls);
                 problem(what, r->name);
                 continue;
             }
-            used[d - docs] = 1;
+            if (own) own_used[d - kind_of->params] = 1;
+            else common_used[d - common] = 1;
             v = r->seen[0] ? 0 : 1;
             if (has_float && r->seen[0] && r->seen[1] && strcmp(r->type[0], r->type[1]))
                 snprintf(kind, sizeof kind, "%s / %s", r->type[1], r->type[0]);
@@ -229,10 +239,15 @@ static void textures(void)
             emit("| `%s` | %s | %s | %s | %s |\n", r->name, kind, def, d->range, d->what);
         }
         emit("\n");
+        for (j = 0; j < kind_of->nparams; ++j)
+            if (!own_used[j]) {
+                char what[96];
+                snprintf(what, sizeof what, "texture %s describes a parameter it does not read", cls);
+                problem(what, kind_of->params[j].name);
+            }
     }
-    for (j = 0; j < ndocs; ++j)
-        if (!used[j]) problem("registry.c describes a parameter no texture reads", docs[j].name);
-    free(used);
+    for (j = 0; j < ncommon; ++j)
+        if (!common_used[j]) problem("textures/create.c describes a parameter no texture reads", common[j].name);
 }
 
 static void media(void)
