@@ -4,7 +4,8 @@
 # a plastic made from its kind's object and a material made from a pbrt-v2
 # statement link with -lpthread -lm alone (no OpenEXR, no libpng) and print
 # their value; the plastic's program holds no other material kind and the
-# Lambertian's no material at all. Prints PASS/FAIL lines for
+# Lambertian's no material at all. The README's program (a material from
+# text, examples/embed/quick.c) links with -lpthread -lm alone too. Prints PASS/FAIL lines for
 # tools/run-checks.sh, and the objects each program took from the archive
 # (docs/LINKING.md has the table and the commands).
 # usage: check-link.sh BUILD_DIR   (CC from the environment)
@@ -49,4 +50,16 @@ for p in "lambertian 0.159155" "plastic 0.180443" "statement 0.357339"; do
                  fail "plastic: material kinds linked:$have (want plastic alone)" ;;
     esac
 done
+# the README's program: every kind (a type named by a string), no image library
+if $cc -std=c99 -Iinclude -I"$build/include" examples/embed/quick.c -o "$tmp/quick" \
+    "$build/libmateria.a" -lpthread -lm >"$tmp/quick.log" 2>&1; then
+    got=$("$tmp/quick")
+    case $got in
+    "f = "*) pass "the README's program (examples/embed/quick.c): links with -lpthread -lm alone and runs" ;;
+    *) fail "the README's program printed \"$got\"" ;;
+    esac
+else
+    fail "the README's program (examples/embed/quick.c) does not link with -lpthread -lm alone:"
+    sed 's/^/  /' "$tmp/quick.log" | head -n 20
+fi
 exit $status
