@@ -1001,6 +1001,9 @@ typedef struct light_case {
      * case of its own), so that the reference (the side rays see) is the
      * side the samples emit to */
     mt_mode base;
+    /* when hi > 0: the range pbrt-v2 mode's ratio must fall in (the
+     * release's size of the erratum, not another version's) */
+    double lo, hi;
 } light_case;
 
 static mt_transform placed(const double a[6])
@@ -1044,9 +1047,11 @@ static void check_light_erratum(const light_case *c)
             t_check(estimate_agrees(&est, &ref), nm, "%.5g +- %.2g against %.5g +- %.2g",
                     acc_mean(&est), acc_se(&est), acc_mean(&ref), acc_se(&ref));
         } else if (m == 0) {
+            double ratio = acc_mean(&est) / acc_mean(&ref);
             snprintf(nm, sizeof nm, "light %s: pbrt-v2's bias reproduced", c->what);
-            t_check(!estimate_agrees(&est, &ref), nm, "%.5g +- %.2g against %.5g +- %.2g",
-                    acc_mean(&est), acc_se(&est), acc_mean(&ref), acc_se(&ref));
+            t_check(!estimate_agrees(&est, &ref) && (c->hi == 0 || (ratio > c->lo && ratio < c->hi)), nm,
+                    "%.5g +- %.2g against %.5g +- %.2g", acc_mean(&est), acc_se(&est), acc_mean(&ref),
+                    acc_se(&ref));
             snprintf(nm, sizeof nm, "light %s", c->what);
             t_xfail(nm, "erratum %s: light sampling gives %.3f times the light seen (%.4g sr of %.4g)",
                     c->erratum, acc_mean(&est) / acc_mean(&ref), acc_mean(&est), acc_mean(&ref));
@@ -1071,43 +1076,45 @@ static void test_light_errata(void)
     static const light_case cases[] = {
         {"partial-sampling", "hemisphere dome (ReverseOrientation) seen from inside",
          "Shape \"sphere\" \"float radius\" 2 \"float zmin\" 0", {0, 0, 0, 1, 1, 1}, 1,
-         {0.3f, -0.2f, 0.4f}, MT_FIX_PARTIAL_SAMPLING, 0, 0},
+         {0.3f, -0.2f, 0.4f}, MT_FIX_PARTIAL_SAMPLING, 0, 0, 0, 0},
         {"partial-sampling", "annulus sector (innerradius 0.5 of 1, phimax 270)",
          "Shape \"disk\" \"float radius\" 1 \"float innerradius\" 0.5 \"float phimax\" 270",
-         {0, 0, 2, 1, 1, 1}, 1, {0.1f, 0.2f, 0}, MT_FIX_PARTIAL_SAMPLING, 0, MT_FIX_DISK_PARTIALS},
+         {0, 0, 2, 1, 1, 1}, 1, {0.1f, 0.2f, 0}, MT_FIX_PARTIAL_SAMPLING, 0, MT_FIX_DISK_PARTIALS, 0, 0},
         {"partial-sampling", "half sphere (phimax 180) seen from outside",
          "Shape \"sphere\" \"float phimax\" 180", {0.2, 0.1, 3, 1, 1, 1}, 0, {0, 0, 0},
-         MT_FIX_PARTIAL_SAMPLING, 0, 0},
+         MT_FIX_PARTIAL_SAMPLING, 0, 0, 0, 0},
         {"quadric-scale", "sphere under Scale 2 seen from outside", "Shape \"sphere\"",
-         {0, 0, 5, 2, 2, 2}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0},
+         {0, 0, 5, 2, 2, 2}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
         {"quadric-scale", "disk under Scale 2", "Shape \"disk\" \"float radius\" 0.7",
-         {0, 0, 3, 2, 2, 2}, 1, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, MT_FIX_DISK_PARTIALS},
+         {0, 0, 3, 2, 2, 2}, 1, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, MT_FIX_DISK_PARTIALS, 0, 0},
         {"quadric-scale", "ellipsoid (Scale 2 2 1) seen from outside", "Shape \"sphere\"",
-         {0, 0, 4, 2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0},
+         {0, 0, 4, 2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
         /* mirrored: with quadric-scale fixed an ellipsoid's samples move to
          * the front, which the pdf must count */
         {"quadric-scale", "mirrored ellipsoid (Scale -2 2 1) seen from outside", "Shape \"sphere\"",
-         {0, 0, 4, -2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0},
+         {0, 0, 4, -2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
         {"quadric-scale", "cylinder under Scale 2 seen from its axis (ReverseOrientation)",
-         "Shape \"cylinder\"", {0, 0, 0, 2, 2, 2}, 1, {0, 0.1f, 0.3f}, MT_FIX_QUADRIC_SCALE, 0, 0},
+         "Shape \"cylinder\"", {0, 0, 0, 2, 2, 2}, 1, {0, 0.1f, 0.3f}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
+        /* the release: about p_front / (p_front + p_back); the 2012 source's
+         * re-intersection gave 0 from this side */
         {"shapeset-hit", "closed mesh (octahedron) seen from above", OCTAHEDRON,
-         {0.3, 0.2, -3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_SHAPESET_HIT, 0, 0},
+         {0.3, 0.2, -3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_SHAPESET_HIT, 0, 0, 0.4, 0.6},
         /* a sample on the far side is blocked by the near side, and
          * Shape::Pdf counts the near point alone: unbiased since df276f5
          * (the 2012 snapshot's re-intersection brought both to the near
          * point: 2.861 times the light) */
         {"shapeset-hit", "cylinder seen from outside", "Shape \"cylinder\"", {0, 3, 0, 1, 1, 1}, 0,
-         {0, 0, 0}, MT_FIX_SHAPESET_HIT, 1, 0},
+         {0, 0, 0}, MT_FIX_SHAPESET_HIT, 1, 0, 0, 0},
         /* Sample() ignores the mirror; the 2012 snapshot's re-intersection
          * replaced its normal with the hit's, the release leaves it */
         {"triangle-facing", "mirrored quad (Scale -1 1 1) seen from the side it faces",
          "Shape \"trianglemesh\" \"integer indices\" [0 2 1 0 3 2]"
          " \"point P\" [-0.6 -0.4 0  0.6 -0.4 0  0.6 0.4 0  -0.6 0.4 0]",
-         {0.3, 0.2, 2, -1, 1, 1}, 0, {0, 0, 0}, MT_FIX_TRIANGLE_FACING, 0, 0},
+         {0.3, 0.2, 2, -1, 1, 1}, 0, {0, 0, 0}, MT_FIX_TRIANGLE_FACING, 0, 0, 0, 0},
         /* hits face -z, samples +z: seen from below, rays find the light
          * and light sampling finds none */
         {"disk-partials", "disk (its hits facing -z) seen from below", "Shape \"disk\" \"float radius\" 0.7",
-         {0, 0, 3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_DISK_PARTIALS, 0, 0},
+         {0, 0, 3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_DISK_PARTIALS, 0, 0, 0, 0},
     };
     size_t i;
     for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) check_light_erratum(&cases[i]);
