@@ -32,7 +32,7 @@ typedef struct mt__filter {
     mt_real tau;                 /* sinc */
 } mt__filter;
 
-/* The filter named `name` from its parameters (marked used); MT_ERR_UNSUPPORTED
+/* The filter named `name` from its parameters (marked used); MT_ERR_NOT_FOUND
  * for an unknown name, MT_ERR_INVALID for a width that is not positive. */
 mt_status mt__filter_create(mt__filter *f, const char *name, const mt_paramset *ps,
                             mt_error *err);
