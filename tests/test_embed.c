@@ -53,8 +53,10 @@ static void plastic(void)
     mt_param p[3];
     mt_material *t, *q;
     mt_rgb want, got, gotp;
-    mt_bsdf_add(b, mt_lambertian_create(a, 0, mt_rgb_make(0.5f, 0.4f, 0.3f), &err), &err);
-    mt_bsdf_add(b, mt_microfacet_create(a, 0, mt_rgb_gray(0.2f), mt_fresnel_dielectric(1.5f, 1),
+    /* the text's numbers as mt_real reads them (0.4f is not 0.4 in the
+     * double build) */
+    mt_bsdf_add(b, mt_lambertian_create(a, 0, mt_rgb_make((mt_real)0.5, (mt_real)0.4, (mt_real)0.3), &err), &err);
+    mt_bsdf_add(b, mt_microfacet_create(a, 0, mt_rgb_gray((mt_real)0.2), mt_fresnel_dielectric(1.5f, 1),
                                         mt_blinn(1 / (mt_real)0.05), &err), &err);
     want = mt_bsdf_f(b, WO, WI, MT_BSDF_ALL);
     t = mt_material_from_text("Material \"plastic\" \"rgb Kd\" [0.5 0.4 0.3] \"rgb Ks\" [0.2 0.2 0.2]\n"
