@@ -47,7 +47,7 @@ SCN=$SHARED/reference/scenes
 
 # materia: the renderer as it is, then one dimension (or vertex) at a time
 # drawn independently, then everything
-VAR_CONFIGS=${VAR_CONFIGS:-"ld= image=image v0.light=v0.light v0.bsdf=v0.bsdf v0=v0 v1=v1 v2+=v2+ all=all"}
+VAR_CONFIGS=${VAR_CONFIGS:-"ld= image=image v0.light=v0.light v0.bsdf=v0.bsdf v0=v0 v1=v1 v2+=v2+ all=all own-choice=own-choice chosen-bsdf=chosen-bsdf pbrt-v2-both=own-choice,chosen-bsdf pbrt-v2-both-random=own-choice,chosen-bsdf,all"}
 echo "renderer,scene,spp,config,rmse,mean,seconds,load" > "$CSV"
 for s in $SCENES; do
     echo "7-variance: materia $s at $SPP spp" >&2
