@@ -84,7 +84,7 @@ static mt_rgb light_along(const mt_scene *s, const mt__light *light, const mt_ra
 /* EstimateDirect's light sample: f Li |cos| w / pdf, the power heuristic
  * against the non-specular BSDF pdf unless the light is a delta light; ls
  * receives the sample. */
-static mt_rgb light_term(const mt_scene *s, const mt__light *light, const mt__vertex *v,
+static inline mt_rgb light_term(const mt_scene *s, const mt__light *light, const mt__vertex *v,
                          const mt_real lu[3], mt__light_sample *ls)
 {
     mt__light_sample_l(light, &v->sf, v->p, lu[0], lu[1], lu[2], ls);
@@ -158,7 +158,7 @@ mt_bsdf_sample mt__sample_bsdf_pair(const mt__vertex *v, const mt_real u[2], uns
  * measurements, pair 5's first value chooses it, as pbrt-v2's separate 1D
  * sample does); pair 1's first value is the component of a ShapeSet, whose
  * other lights ignore it. */
-static const mt__light *choose_light(mt__thread_ctx *tc, int vertex, mt_real lu[3])
+static inline const mt__light *choose_light(mt__thread_ctx *tc, int vertex, mt_real lu[3])
 {
     const mt_scene *s = tc->scene;
     const mt__light *light;
