@@ -153,11 +153,18 @@ mt_bsdf_sample mt__sample_bsdf_pair(const mt__vertex *v, const mt_real u[2], uns
     return mt__bsdf_sample_f_wo(v->bsdf, &v->bwo, u[0], u1, u[1], flags);
 }
 
+/* Up to this many primitives, a ShapeSet light's primitive is chosen by the
+ * light sample's first value, rescaled within the choice; each choice costs
+ * the value log2(count) of its bits (24 in float), so larger sets (meshes)
+ * take a value of their own. */
+#define MT__SET_REUSE_MAX 256
+
 /* The light of one-light direct lighting and its sample: pair 0's first
  * value chooses it and, rescaled, is the sample's first coordinate (or, for
  * measurements, pair 5's first value chooses it, as pbrt-v2's separate 1D
- * sample does); pair 1's first value is the component of a ShapeSet, whose
- * other lights ignore it. */
+ * sample does); the primitive of a ShapeSet is chosen by that coordinate
+ * too, rescaled again (up to MT__SET_REUSE_MAX primitives), or by pair 1's
+ * first value. */
 static inline const mt__light *choose_light(mt__thread_ctx *tc, int vertex, mt_real lu[3])
 {
     const mt_scene *s = tc->scene;
@@ -176,8 +183,19 @@ static inline const mt__light *choose_light(mt__thread_ctx *tc, int vertex, mt_r
     lu[2] = lpos[1];
     light = &s->lights[i];
     comp[0] = 0;
-    if (light->kind == MT__LIGHT_AREA && mt_shape_prim_count(light->shape) > 1)
-        mt__vertex_sample(tc, vertex, 1, 0, 1, comp);
+    if (light->kind == MT__LIGHT_AREA && mt_shape_prim_count(light->shape) > 1) {
+        if (mt_shape_prim_count(light->shape) <= MT__SET_REUSE_MAX) {
+            /* the same value chooses the primitive and, rescaled within it,
+             * is the sample's first coordinate: the samples over the whole
+             * set stay one stratified set, where a value of its own would
+             * give each primitive a random subset of them (a quad light's
+             * two triangles) */
+            comp[0] = lu[1];
+            lu[1] = mt__shape_set_rescale(light->shape, lu[1]);
+        } else {
+            mt__vertex_sample(tc, vertex, 1, 0, 1, comp);
+        }
+    }
     lu[0] = comp[0];
     return light;
 }
