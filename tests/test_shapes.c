@@ -1286,6 +1286,35 @@ static void test_sampling(void)
     check_area_sampling("two triangles", mesh, 0.5 * dlen(dcross(D3(3, 0, 0), D3(2, 2, 0.5))) +
                                                  0.5 * dlen(dcross(D3(2, 2, 0.5), D3(0, 3, 0))));
     {
+        /* mt__shape_set_rescale: one value chooses the primitive (area 0.5 and
+         * 1.5: cdf 0, 0.25, 1) and, rescaled, covers [0, 1) evenly within
+         * each; u left as it is (or divided by the wrong interval) would give
+         * the second primitive values in [0.25, 1) and a mean of 0.625 */
+        mt_shape *two = must_shape("Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] "
+                                   "\"point P\" [0 0 0 1 0 0 1 1 0 0 3 0]", NULL, 0);
+        enum { N = 4096 };
+        double sum[2] = {0, 0}, lo[2] = {1, 1}, hi[2] = {0, 0};
+        int cnt[2] = {0, 0}, k, mono = 1;
+        mt_real last[2] = {-1, -1};
+        for (k = 0; two && k < N; ++k) {
+            mt_real u = ((mt_real)k + (mt_real)0.5) / (mt_real)N, r = mt__shape_set_rescale(two, u);
+            int i = u < (mt_real)0.25 ? 0 : 1;
+            if (!(r > last[i])) mono = 0;
+            last[i] = r;
+            sum[i] += r;
+            cnt[i]++;
+            if (r < lo[i]) lo[i] = r;
+            if (r > hi[i]) hi[i] = r;
+        }
+        t_check(two && cnt[0] == N / 4 && mono && fabs(sum[0] / cnt[0] - 0.5) < 1e-4 &&
+                    fabs(sum[1] / cnt[1] - 0.5) < 1e-4 && lo[0] < 0.01 && lo[1] < 0.01 &&
+                    hi[0] > 0.99 && hi[1] > 0.99 && hi[0] < 1 && hi[1] < 1,
+                "set rescale: each primitive's values cover [0, 1) evenly",
+                "means %.6f %.6f, ranges [%.4f %.4f] [%.4f %.4f], monotone %d", sum[0] / cnt[0],
+                sum[1] / cnt[1], lo[0], hi[0], lo[1], hi[1], mono);
+        mt_shape_destroy(two);
+    }
+    {
         /* pbrt-v2's cone pdf from outside: 1 / (2 pi (1 - cos theta_max)) */
         double d2 = 0.25 * 0.25 + 0.125 * 0.125 + 1.5 * 1.5, ct = sqrt(1 - 0.49 / d2);
         mt_vec3 w = mt_v3_normalize(mt_v3(0.25f, 0.125f, 1.5f));

@@ -290,6 +290,11 @@ mt_vec3 mt_shape_set_sample(const mt_shape *s, mt_real ucomp, mt_real u1, mt_rea
                             mt_vec3 *ns);
 mt_vec3 mt_shape_set_sample_from(const mt_shape *s, mt_vec3 p, mt_real ucomp, mt_real u1,
                                  mt_real u2, mt_vec3 *ns);
+/* u rescaled to [0, 1) within the interval of the primitive that ucomp = u
+ * chooses (ShapeSet's area distribution): with u uniform, the choice and the
+ * rescaled value are independent and uniform, so one low-discrepancy value
+ * can serve as ucomp and u1 alike. */
+mt_real mt__shape_set_rescale(const mt_shape *s, mt_real u);
 /* sum over primitives of area_i Pdf_i(p, wi) / total area. */
 mt_real mt_shape_set_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi);
 /* mt_shape_sample_from of primitive 0 into *pt and, when the shape's

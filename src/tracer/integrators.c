@@ -21,6 +21,10 @@
 #include "materia/bxdf.h"
 #include "tracer/shading.h"
 
+#define SPECULAR_ONLY ((unsigned)MT_BSDF_SPECULAR | (unsigned)MT_BSDF_REFLECTION | (unsigned)MT_BSDF_TRANSMISSION)
+
+uint64_t mt__x_rand;
+
 void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, uint64_t seed,
                             int x, int y)
 {
@@ -40,29 +44,33 @@ void mt__seed_slot_fill(mt__thread_ctx *tc, int vertex, unsigned k)
 
 void mt__vertex_sample_slow(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2])
 {
-    if (vertex < MT__LD_VERTICES) {
-        uint32_t dim = MT__DIM_VERTEX0 + (uint32_t)vertex * 0x10000u + k;
-        uint32_t rindex = n == 1 ? tc->rindex : mt__reverse_bits(tc->index * (uint32_t)n + (uint32_t)j);
-        mt__dim_seeds local, *ds = &local;
-        if (k < MT__SEED_CACHE_PAIRS) {
-            mt__seed_slot *slot = &tc->seed_cache[vertex][k];
-            if (slot->gen != tc->pixel_gen) {
-                mt__dim_seeds_init(&tc->sampler, dim, &slot->seeds);
-                slot->gen = tc->pixel_gen;
-            }
-            ds = &slot->seeds;
-        } else {
-            mt__dim_seeds_init(&tc->sampler, dim, ds);
+    uint32_t dim = MT__DIM_VERTEX0 + (uint32_t)vertex * 0x10000u + k;
+    uint32_t rindex = n == 1 ? tc->rindex : mt__reverse_bits(tc->index * (uint32_t)n + (uint32_t)j);
+    mt__dim_seeds local, *ds = &local;
+    if (vertex < MT__SEED_CACHE_VERTICES && k < MT__SEED_CACHE_PAIRS) {
+        mt__seed_slot *slot = &tc->seed_cache[vertex][k];
+        if (slot->gen != tc->pixel_gen) {
+            mt__dim_seeds_init(&tc->sampler, dim, &slot->seeds);
+            slot->gen = tc->pixel_gen;
         }
-        mt__sample_2d_rev(tc->sampler.tables, ds, rindex, out);
-        return;
+        ds = &slot->seeds;
+    } else {
+        mt__dim_seeds_init(&tc->sampler, dim, ds);
     }
-    if (!tc->rng_ready) {
-        mt_rng_seed(&tc->rng, mt__hash_combine(tc->sampler.seed, tc->index), 0);
-        tc->rng_ready = 1;
+    mt__sample_2d_rev(tc->sampler.tables, ds, rindex, out);
+    if (tc->any_independent && k < 8) {
+        const uint16_t *ind = tc->scene->independent;
+        unsigned mask = (ind[vertex < MT__INDEPENDENT_VERTICES ? vertex : MT__INDEPENDENT_VERTICES - 1] >> (2 * k)) & 3u;
+        if (mask) mt__independent_pair(tc, dim, tc->index * (uint32_t)n + (uint32_t)j, mask, out);
     }
-    out[0] = mt_rng_uniform(&tc->rng);
-    out[1] = mt_rng_uniform(&tc->rng);
+}
+
+void mt__independent_pair(const mt__thread_ctx *tc, uint32_t dim, uint32_t element, unsigned mask,
+                          mt_real out[2])
+{
+    uint32_t h = mt__hash_combine(mt__hash_combine(tc->sampler.seed, dim), element);
+    if (mask & 1u) out[0] = mt__u32_to_unit(mt__hash_combine(h, 0x3c6ef372u));
+    if (mask & 2u) out[1] = mt__u32_to_unit(mt__hash_combine(h, 0xa54ff53au));
 }
 
 mt_rgb mt__escaped(const mt_scene *s, mt_vec3 d)
@@ -78,38 +86,66 @@ static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, mt_real diff_sca
     const mt_scene *s = tc->scene;
     mt_rgb L = mt_rgb_black(), beta = mt_rgb_gray(1);
     mt_ray ray = rd->ray;
-    mt_hit hit = *first;
+    mt_hit hit;
+    const mt_hit *next = first;
     int bounces, specular = 0;
     for (bounces = 0;; ++bounces) {
         mt__vertex v;
-        mt_real comp[2], dir[2];
+        mt_real dir[2];
         mt_bsdf_sample bs;
         mt_raydiff scaled;
         const mt_raydiff *vrd = NULL;
+        int traced = 0;
         /* the camera ray's differentials, for the first vertex's textures */
-        if (bounces == 0 && !((const mt__prim_info *)mt_shape_user(hit.shape))->uniform) {
+        if (bounces == 0 && !((const mt__prim_info *)mt_shape_user(next->shape))->uniform) {
             scaled = *rd;
             mt_raydiff_scale(&scaled, diff_scale);
             vrd = &scaled;
         }
-        if (!mt__vertex_shade(tc, &hit, &ray, vrd, &v)) break;
+        if (!mt__vertex_shade(tc, next, &ray, vrd, &v)) break;
         if (bounces == 0 || specular) L = mt_rgb_add(L, mt_rgb_mul(beta, mt__vertex_le(s, &v)));
-        L = mt_rgb_add(L, mt_rgb_mul(beta, mt__sample_one_light(tc, &v, bounces, comp)));
-        /* the next direction: pair 2's second value and pair 4 */
-        mt__vertex_sample(tc, bounces, 4, 0, 1, dir);
-        bs = mt__bsdf_sample_f_wo(v.bsdf, &v.bwo, comp[1], dir[0], dir[1], MT_BSDF_ALL);
+        if (s->measure_chosen_bsdf) L = mt_rgb_add(L, mt_rgb_mul(beta, mt__one_light_chosen_bsdf(tc, &v, bounces)));
+        else L = mt_rgb_add(L, mt_rgb_mul(beta, mt__light_strategy_one(tc, &v, bounces)));
+        /* the next direction (pair 2), which is also direct lighting's BSDF
+         * sample whenever it comes from a non-specular component */
+        mt__vertex_sample(tc, bounces, 2, 0, 1, dir);
+        bs = mt__sample_bsdf_pair(&v, dir, MT_BSDF_ALL);
         if (mt_rgb_is_black(bs.f) || bs.pdf == 0) break;
         specular = (bs.type & MT_BSDF_SPECULAR) != 0;
         beta = mt_rgb_mul(beta, mt_rgb_scale(bs.f, mt_v3_absdot(bs.wi, v.n) / bs.pdf));
         ray = mt_surface_spawn(&v.sf, bs.wi);
+        next = NULL;
+        if (!specular && s->nlights > 0 && !s->measure_chosen_bsdf) {
+            mt_real c = 1, pdf_ns = bs.pdf;
+            if (v.ncomp != v.ncomp_nonspecular) {
+                /* Given a non-specular component (probability ncomp_ns /
+                 * ncomp), the direction and f are EstimateDirect's BSDF
+                 * sample's (non-specular components only); its pdf is bs.pdf
+                 * times ncomp without the specular components' Pdf() (0,
+                 * but not for pbrt-v2's ScaledBxDF: erratum scaled-pdf), over
+                 * ncomp_ns. Divided by that probability, the term below
+                 * has EstimateDirect's expectation whatever the pdfs. */
+                mt_real spec = mt_bsdf_pdf(v.bsdf, v.wo, bs.wi, SPECULAR_ONLY) *
+                               (mt_real)(v.ncomp - v.ncomp_nonspecular);
+                pdf_ns = (bs.pdf * (mt_real)v.ncomp - spec) / (mt_real)v.ncomp_nonspecular;
+                c = pdf_ns > 0 ? bs.pdf * (mt_real)v.ncomp / (pdf_ns * (mt_real)v.ncomp_nonspecular) : 0;
+            }
+            /* traced before Russian roulette and the depth limit: its light
+             * belongs to this vertex's direct lighting */
+            traced = 1;
+            if (mt_geometry_intersect(s->geom, &ray, &hit)) next = &hit;
+            if (c > 0)
+                L = mt_rgb_add(L, mt_rgb_mul(mt_rgb_scale(beta, c), mt__mis_emission(s, &v, pdf_ns, &ray, next)));
+        }
         if (bounces > 3) {
             mt_real rr[2], q = mt_min((mt_real)0.5, mt_rgb_y(beta));
-            mt__vertex_sample(tc, bounces, 5, 0, 1, rr);
-            if (rr[0] > q) break;
+            mt__vertex_sample(tc, bounces, 1, 0, 1, rr);
+            if (rr[1] > q) break;
             beta = mt_rgb_divs(beta, q);
         }
         if (bounces == s->maxdepth) break;
-        if (!mt_geometry_intersect(s->geom, &ray, &hit)) {
+        if (!traced && mt_geometry_intersect(s->geom, &ray, &hit)) next = &hit;
+        if (!next) {
             if (specular) L = mt_rgb_add(L, mt_rgb_mul(beta, mt__escaped(s, ray.d)));
             break;
         }
@@ -230,9 +266,9 @@ static mt_rgb direct_li(mt__thread_ctx *tc, const mt_raydiff *rd, const mt_hit *
     L = mt__vertex_le(s, &v);
     if (dipole) L = mt_rgb_add(L, subsurface(tc, &v));
     if (s->nlights > 0) {
-        mt_real unused[2];
-        L = mt_rgb_add(L, s->strategy_all ? mt__sample_all_lights(tc, &v, depth)
-                                          : mt__sample_one_light(tc, &v, depth, unused));
+        if (s->strategy_all) L = mt_rgb_add(L, mt__sample_all_lights(tc, &v, depth));
+        else L = mt_rgb_add(mt_rgb_add(L, mt__light_strategy_one(tc, &v, depth)),
+                            mt__bsdf_strategy(tc, &v, depth, 3));
     }
     /* directlighting follows specular light while depth + 1 < maxdepth,
      * dipolesubsurface while depth < maxdepth (pbrt-v2's two tests) */

@@ -79,8 +79,8 @@ static void render_tile(render_job *job, mt__thread_ctx *tc, int t, mt__film_buf
                 mt_rgb L;
                 tc->index = (uint32_t)i;
                 tc->rindex = mt__reverse_bits((uint32_t)i);
-                tc->rng_ready = 0;
                 mt__sample_2d_rev(&job->tables, &image_seeds, tc->rindex, u);
+                if (s->independent_image) mt__independent_pair(tc, MT__DIM_IMAGE, tc->index, 3u, u);
                 cs.image_x = (mt_real)x + u[0];
                 cs.image_y = (mt_real)y + u[1];
                 cs.lens_u = cs.lens_v = (mt_real)0.5;
@@ -110,6 +110,10 @@ static void *work(void *arg)
     tc.scene = job->s;
     tc.arena = w->arena;
     tc.dipole = job->dipole;
+    {
+        int v;
+        for (v = 0; v < MT__INDEPENDENT_VERTICES; ++v) tc.any_independent |= job->s->independent[v] != 0;
+    }
     for (;;) {
         int t, b;
         mt__film_buf *buf;

@@ -16,6 +16,9 @@
 #include "tracer/sampler.h"
 #include "materials/bssrdf_cache.h"
 
+/* Vertices with their own entry in mt_scene.independent. */
+#define MT__INDEPENDENT_VERTICES 8
+
 typedef enum mt__integrator { MT__INTEGRATOR_PATH, MT__INTEGRATOR_DIRECT, MT__INTEGRATOR_DIPOLE } mt__integrator;
 
 /* What the renderer attaches to each shape (mt_shape_user). */
@@ -49,12 +52,27 @@ struct mt_scene {
     int nprims, cap_prims;
     mt_material **materials;
     int nmaterials, cap_materials;
+    /* For measurements only (tradeoff/variance.c; 0 in every other render):
+     * values drawn independently at random instead of from their
+     * low-discrepancy pair, to measure what each pair's stratification
+     * buys. Bit 2k + c of independent[v] is value c of pair k of vertex v
+     * (deeper vertices follow the last entry); independent_image the image
+     * position. */
+    uint16_t independent[MT__INDEPENDENT_VERTICES];
+    int independent_image;
+    /* For measurements too: pbrt-v2's own design decisions, to measure what
+     * each costs -- the light chosen by a value of its own rather than by
+     * the light sample's first value (measure_own_choice), and direct
+     * lighting's BSDF sample drawn for the chosen light only, with a ray of
+     * its own, rather than the path's continuation counting for every light
+     * (measure_chosen_bsdf; path integrator). */
+    int measure_own_choice, measure_chosen_bsdf;
 };
 
 /* ---- the integrators' per-thread context ------------------------------------ */
 
-/* Path vertices (directlighting depths) with low-discrepancy samples. */
-#define MT__LD_VERTICES 3
+/* Path vertices (directlighting depths) whose pairs' seeds a thread keeps. */
+#define MT__SEED_CACHE_VERTICES 8
 /* The dimension pairs whose seeds a thread keeps for the current pixel. */
 #define MT__SEED_CACHE_PAIRS 32
 
@@ -68,11 +86,10 @@ typedef struct mt__thread_ctx {
     mt_arena *arena;
     mt__pixel_sampler sampler;
     uint32_t pixel_gen; /* changes with every pixel: invalidates the cache */
-    mt__seed_slot seed_cache[MT__LD_VERTICES][MT__SEED_CACHE_PAIRS];
+    mt__seed_slot seed_cache[MT__SEED_CACHE_VERTICES][MT__SEED_CACHE_PAIRS];
     uint32_t index;   /* the camera sample's index in its pixel */
     uint32_t rindex;  /* index with its bits reversed (mt__sample_2d_rev) */
-    mt_rng rng;       /* dimensions beyond the low-discrepancy ones */
-    int rng_ready;    /* rng seeded for this camera sample (seeded on first use) */
+    int any_independent; /* the scene's independent[] is not all 0 (measurements) */
     long shading_failures;
     long rejected;    /* samples set to black (NaN, Inf, negative) */
     mt_error err;     /* scratch for mt_material_get_bsdf */
@@ -103,9 +120,15 @@ void mt__thread_start_pixel(mt__thread_ctx *tc, const mt__sobol_tables *tables, 
  * mt__seed_slot_fill with the same arithmetic. */
 void mt__vertex_sample_slow(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2]);
 void mt__seed_slot_fill(mt__thread_ctx *tc, int vertex, unsigned k);
+/* Two values of dimension pair dim, array element `element`, drawn
+ * independently at random (a hash of the pixel, the pair, the element and
+ * the value's number), for the values whose bits are set in mask (bit 0:
+ * out[0], bit 1: out[1]); the others are left. Measurements only. */
+void mt__independent_pair(const mt__thread_ctx *tc, uint32_t dim, uint32_t element, unsigned mask,
+                          mt_real out[2]);
 static inline void mt__vertex_sample(mt__thread_ctx *tc, int vertex, unsigned k, int j, int n, mt_real out[2])
 {
-    if (vertex < MT__LD_VERTICES && k < MT__SEED_CACHE_PAIRS) {
+    if (!tc->any_independent && vertex < MT__SEED_CACHE_VERTICES && k < MT__SEED_CACHE_PAIRS) {
         uint32_t rindex = n == 1 ? tc->rindex : mt__reverse_bits(tc->index * (uint32_t)n + (uint32_t)j);
         mt__seed_slot *slot = &tc->seed_cache[vertex][k];
         if (slot->gen != tc->pixel_gen) mt__seed_slot_fill(tc, vertex, k);

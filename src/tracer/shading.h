@@ -17,6 +17,7 @@ typedef struct mt__vertex {
     const mt__prim_info *info;
     mt_vec3 p, n, wo;          /* pbrt-v2's bsdf->dgShading.p, .nn and -ray.d */
     mt__bsdf_wo bwo;           /* wo admitted and in the BSDF's frame, for its queries */
+    int ncomp, ncomp_nonspecular; /* the BSDF's components, and its non-specular ones */
 } mt__vertex;
 
 /* The vertex at hit of ray; rd (may be NULL) gives the ray differentials for
@@ -43,11 +44,42 @@ static inline void mt__u3(mt_real out[3], mt_real first, const mt_real pair[2])
 mt_rgb mt__estimate_direct(mt__thread_ctx *tc, const mt__light *light, const mt__vertex *v,
                            const mt_real lu[3], const mt_real bu[3]);
 
-/* UniformSampleOneLight at path vertex `vertex` (dimension pairs 0, 1, 2, 3
- * of its block: light choice and component, light position, BSDF component,
- * BSDF direction). comp receives pair 2, whose second value is the path
- * integrator's component choice. */
-mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex, mt_real comp[2]);
+/* pbrt-v2's UniformSampleOneLight (one light chosen uniformly, its
+ * EstimateDirect times the light count) split into its two strategies, whose
+ * expectations are kept light by light:
+ * - the light strategy: pair 0 of the vertex's block chooses the light with
+ *   its first value and, rescaled within the choice, gives the light's
+ *   sample with its second (each light receives a stratified subset of the
+ *   pixel's samples); pair 1's first value is the light's component
+ *   (ShapeSet). Weighted by the power heuristic against the non-specular
+ *   BSDF pdf, times the light count, as EstimateDirect's light sample.
+ * - the BSDF strategy: one BSDF sample serves every light -- whichever light
+ *   the ray finds first (or every infinite light, when it leaves the scene)
+ *   counts with EstimateDirect's weight against that light's own pdf and no
+ *   light-count factor. Per light this is EstimateDirect's BSDF term, the
+ *   same expectation, whatever the BSDF's sampling density (errata
+ *   included), as long as the sample is drawn as EstimateDirect draws it
+ *   (non-specular components).
+ * mt__bsdf_strategy draws it from pair k and traces its own ray; the path
+ * integrator uses its continuation instead where the BSDF has no specular
+ * component (the two distributions are then the same), with
+ * mt__mis_emission at the continuation's first hit. */
+mt_rgb mt__light_strategy_one(mt__thread_ctx *tc, const mt__vertex *v, int vertex);
+/* For measurements (mt_scene.measure_chosen_bsdf): pbrt-v2's own
+ * combination, EstimateDirect for the chosen light with a BSDF sample of its
+ * own (pair 3) that counts only when it finds that light, times the light
+ * count. */
+mt_rgb mt__one_light_chosen_bsdf(mt__thread_ctx *tc, const mt__vertex *v, int vertex);
+mt_rgb mt__bsdf_strategy(mt__thread_ctx *tc, const mt__vertex *v, int vertex, unsigned k);
+/* The radiance of the light found along a BSDF-sampled ray (hit NULL: the
+ * ray left the scene), MIS-weighted (power heuristic) between the BSDF
+ * sample's pdf and that light's pdf in the ray's direction. */
+mt_rgb mt__mis_emission(const mt_scene *s, const mt__vertex *v, mt_real bsdf_pdf, const mt_ray *ray,
+                        const mt_hit *hit);
+/* BSDF::Sample_f with the two values of one pair: the component choice
+ * from the first value, which, rescaled within the choice, is also the
+ * direction's first coordinate. */
+mt_bsdf_sample mt__sample_bsdf_pair(const mt__vertex *v, const mt_real u[2], unsigned flags);
 /* UniformSampleAllLights: every light with its sample count (pairs 8 + 3j,
  * 9 + 3j, 10 + 3j for light j, as arrays). */
 mt_rgb mt__sample_all_lights(mt__thread_ctx *tc, const mt__vertex *v, int vertex);

@@ -194,3 +194,13 @@ mt_real mt_shape_set_pdf_from(const mt_shape *s, mt_vec3 p, mt_vec3 wi)
     for (i = 0; i < n; ++i) pdf += s->areas[i] * mt_shape_pdf_from(s, i, p, wi);
     return pdf / s->area_sum;
 }
+
+mt_real mt__shape_set_rescale(const mt_shape *s, mt_real u)
+{
+    uint32_t i = pick_prim(s, u);
+    mt_real w = s->cdf[i + 1] - s->cdf[i], r;
+    if (!(w > 0)) return u;
+    r = (u - s->cdf[i]) / w;
+    if (!(r >= 0)) return 0;
+    return r < 1 ? r : 1 - MT_REAL_EPSILON / 2;
+}

@@ -309,6 +309,46 @@ static mt_real cone_pdf(mt_real costhetamax)
  * direction: not when partial-sampling is fixed and the sphere clipped. */
 static int cone_pdf_uniform(const mt_shape *s) { return !((s->mode & MT_FIX_PARTIAL_SAMPLING) && clipped(s)); }
 
+/* The distance along r (from outside) to the first point of a whole sphere
+ * under a similarity, when the ray meets it clearly: the root of
+ * |o + t d - c|^2 = R^2 (R the world radius) in its stable form
+ * t = (|e|^2 - R^2) / (b + sqrt(D)), e = c - o, b = e . d,
+ * D = |d|^2 R^2 - |e x d|^2 (no cancellation), in double -- the point
+ * pbrt-v2's Sphere::Sample finds by intersecting the sphere, up to the
+ * rounding of another computation. 0 (the caller intersects, with pbrt-v2's
+ * rules for a miss and a clipped sphere) when the sphere is clipped or not
+ * placed by a similarity, the ray grazes it (D within 1e-9 of |d|^2 R^2,
+ * far above D's rounding) or the root lies below 2e-3 (pbrt-v2's ray starts
+ * at 1e-3). */
+static int first_root(const mt_shape *s, const mt_ray *r, mt_real *t)
+{
+    const double(*m)[4] = (const double(*)[4])s->o2w.m.m;
+    double e[3], d[3], b, e2, dd, x[3], D, R, tt;
+    int i;
+    if (!s->ball_ok || clipped(s)) return 0;
+    d[0] = r->d.x;
+    d[1] = r->d.y;
+    d[2] = r->d.z;
+    e[0] = m[0][3] - (double)r->o.x;
+    e[1] = m[1][3] - (double)r->o.y;
+    e[2] = m[2][3] - (double)r->o.z;
+    R = (double)s->radius * s->sim_scale;
+    for (b = e2 = dd = 0, i = 0; i < 3; ++i) {
+        b += e[i] * d[i];
+        e2 += e[i] * e[i];
+        dd += d[i] * d[i];
+    }
+    x[0] = e[1] * d[2] - e[2] * d[1];
+    x[1] = e[2] * d[0] - e[0] * d[2];
+    x[2] = e[0] * d[1] - e[1] * d[0];
+    D = dd * R * R - (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (!(D > 1e-9 * dd * R * R) || !(b > 0)) return 0;
+    tt = (e2 - R * R) / (b + sqrt(D));
+    if (!(tt > 2e-3) || !(tt < 1e30)) return 0;
+    *t = (mt_real)tt;
+    return 1;
+}
+
 mt_vec3 mt__sphere_sample_from_pdf(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns,
                                    int *uniform, mt_real *pdf)
 {
@@ -327,7 +367,9 @@ mt_vec3 mt__sphere_sample_from_pdf(const mt_shape *s, mt_vec3 p, mt_real u1, mt_
     mt_coordinate_system(wc, &wcx, &wcy);
     r = mt_ray_make(p, mt_uniform_sample_cone_frame(u1, u2, costhetamax, wcx, wcy, wc),
                     (mt_real)1e-3, MT_RAY_TMAX);
-    if (!mt_shape_intersect(s, 0, &r, &hit)) {
+    if (first_root(s, &r, &hit.t)) {
+        /* the whole sphere met clearly: its first point, in closed form */
+    } else if (!mt_shape_intersect(s, 0, &r, &hit)) {
         /* a direction at the cone's edge may graze past: pbrt-v2 then takes
          * the point of closest approach to the centre. A direction through
          * the clipped part of a partial sphere meets nothing either: pbrt-v2
