@@ -1,6 +1,6 @@
 /*
  * The worked example (examples/pbrt_materials.py, an independent Python
- * implementation of matte, plastic and mirror), as examples/README.md runs
+ * implementation of matte, plastic, mirror and glass), as examples/README.md runs
  * it:
  *
  * - against the published vectors through vectors/check.py: it must pass in
@@ -23,9 +23,9 @@
 #include "support/toutput.h"
 #include "support/ttools.h"
 
-/* the vectors' configurations of these three materials that the example
+/* the vectors' configurations of these four materials that the example
  * implements (no textures, no bump maps) */
-#define CONFIGS "'^(matte|plastic|mirror) (?!.*(textured|bump))'"
+#define CONFIGS "'^(matte|plastic|mirror|glass) (?!.*(textured|bump))'"
 
 /* vectors/check.py on the example: its exit status, its output in *out. */
 static int check_py(const char *impl_args, const char *configs, const char *files, char **out)
@@ -46,7 +46,7 @@ static void vectors(void)
     rc = check_py("", CONFIGS, "eval,sample", &out);
     if (out) fputs(out, stdout);
     free(out);
-    t_check(rc == 0, "example: matte, plastic and mirror agree with the vectors in both modes",
+    t_check(rc == 0, "example: matte, plastic, mirror and glass agree with the vectors in both modes",
             "vectors/check.py exited %d", rc);
     for (i = 0; i < 3; ++i) {
         char args[64], name[96];
