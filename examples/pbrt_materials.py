@@ -35,7 +35,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import query_protocol as qp  # noqa: E402 (the protocol's lines: examples/query_protocol.py)
 
-PROTOCOL = 1
 INV_PI = 1 / math.pi
 
 BUGS = {
@@ -483,7 +482,7 @@ class Session:
         if word == "version":
             if args:
                 raise ValueError("version: takes no arguments")
-            return "protocol %d pbrt_materials.py 0.1 precision double" % PROTOCOL
+            return "protocol %d pbrt_materials.py 0.1 precision double" % qp.PROTOCOL
         if word == "conventions":
             if args:
                 raise ValueError("conventions: takes no arguments")

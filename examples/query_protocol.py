@@ -19,6 +19,8 @@ import math
 import os
 import sys
 
+PROTOCOL = 1  # the version of docs/PROTOCOL.md these lines follow
+
 QUERIES = ("version", "conventions", "mode", "at", "eval", "sample", "rho", "bssrdf", "shading", "texture")
 
 # `at KEY VALUES...`: each key and its number of values, and the defaults

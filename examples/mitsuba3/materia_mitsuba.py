@@ -45,7 +45,6 @@ import materials  # noqa: E402
 import query_protocol as qp  # noqa: E402
 from pbrt_scene import InputError, Missing, State, Unsupported  # noqa: E402
 
-PROTOCOL = 1
 
 # Mitsuba's BSDFFlags -> pbrt-v2's BxDFType bits (reflection 1, transmission 2,
 # diffuse 4, glossy 8, specular 16). Null (mask's pass-through) is a delta
@@ -199,7 +198,7 @@ class Session:
         if word == "conventions":
             return "transport %s sample-numbers 3" % self.transport
         if word == "version":
-            return "protocol %d mitsuba3 %s precision float" % (PROTOCOL, mi.__version__)
+            return "protocol %d mitsuba3 %s precision float" % (qp.PROTOCOL, mi.__version__)
         if word == "mode":
             if len(args) != 1 or args[0] not in ("pbrt-v2", "corrected"):
                 raise InputError("mode: pbrt-v2 or corrected")
