@@ -3,8 +3,10 @@
  * pbrt-v2 mode, in corrected mode and alone:
  *   exr-half (MT_FIX_EXR_HALF): R, G, B read through HALF slices, so float
  *     and uint channels are rounded to half (saturated at +-65504 here);
- *   exr-missing-channels (MT_FIX_EXR_MISSING_CHANNELS): only R, G, B are
- *     read, a missing one as 0: a Y-only file is black;
+ *   exr-missing-channels (MT_FIX_EXR_MISSING_CHANNELS): pbrt-v2 reads
+ *     through OpenEXR's RgbaInputFile (its commit 4a851f4): a Y channel is
+ *     the whole image, gray, even beside R, G and B; no R, G, B or Y reads
+ *     black (the 2012 source read R, G, B alone: a Y-only file was black);
  *   pfm-rows (MT_FIX_PFM_ROWS): PFM rows kept in file order (upside down);
  * and, fixed in both modes, a data window away from the origin. Then the
  * same files through the image-map texture of a query session (the
@@ -218,46 +220,59 @@ static void test_exr_half(void)
 static void test_exr_missing(void)
 {
     static const char *const y_a[] = {"Y", "A", NULL}, *const z_only[] = {"Z", NULL, NULL};
-    static const char *const r_only[] = {"R", NULL, NULL};
+    static const char *const r_only[] = {"R", NULL, NULL}, *const y_rgb[] = {"Y", "R", "G", "B"};
+    static const char *const y_ry_by[] = {"Y", "RY", "BY"};
     const char *y = t_tmp_path("y.exr"), *ya = t_tmp_path("ya.exr"), *z = t_tmp_path("z.exr"),
-               *r = t_tmp_path("r.exr");
-    mt_image gray, three, a, b;
+               *r = t_tmp_path("r.exr"), *yrgb = t_tmp_path("yrgb.exr"), *yc = t_tmp_path("yc.exr");
+    mt_image gray, three, four, a, b;
     mt_error err;
     int k, ok;
     mt_image_alloc(&gray, 3, 2, 1, NULL);
     mt_image_alloc(&three, 3, 2, 3, NULL);
+    mt_image_alloc(&four, 3, 2, 4, NULL);
     for (k = 0; k < 6; k++) gray.data[k] = 0.125f * (float)(k + 1);
     for (k = 0; k < 18; k++) three.data[k] = 0.0625f * (float)(k + 1);
+    for (k = 0; k < 24; k++) four.data[k] = 0.03125f * (float)(k + 1);
+    /* Y alone: gray in both modes (pbrt-v2's 2012 source read it black) */
     ok = write_exr(y, &gray, EXR_PIXEL_HALF, NULL, 0, 0) && read_mode(y, V2, &a) &&
          read_mode(y, FIXED, &b);
-    for (k = 0; ok && k < 18; k++) ok = a.channels == 3 && a.data[k] == 0;
-    t_check(ok, "exr-missing-channels: a Y-only EXR is black RGB in pbrt-v2 mode", "not black");
-    ok = b.data != NULL;
-    t_check(ok && compare(&b, &gray, 1, identity, 0) == 0,
-            "exr-missing-channels: a Y-only EXR is gray in corrected mode", "values differ");
-    if (ok && a.data[0] == 0 && b.data[0] > 0)
-        t_xfail("exr-missing-channels: a Y-only EXR texture is gray",
-                "pbrt-v2 mode reads (0, 0, 0) for Y = %g..%g (R, G, B missing, filled with 0): "
-                "erratum exr-missing-channels, fixed by MT_FIX_EXR_MISSING_CHANNELS",
-                (double)gray.data[0], (double)gray.data[5]);
+    t_check(ok && compare(&a, &gray, 1, identity, 0) == 0 && compare(&b, &gray, 1, identity, 0) == 0,
+            "exr-missing-channels: a Y-only EXR is gray in both modes (pbrt-v2 e6f6334)",
+            "values differ");
+    mt_image_free(&a);
+    mt_image_free(&b);
+    /* Y and A: gray RGBA in both modes */
+    ok = write_exr(ya, &three, EXR_PIXEL_HALF, y_a, 0, 0) && read_mode(ya, V2, &a) &&
+         read_mode(ya, FIXED, &b);
+    t_check(ok && a.channels == 4 && b.channels == 4 && a.data[0] == three.data[0] &&
+                a.data[2] == three.data[0] && a.data[3] == three.data[1] &&
+                b.data[0] == three.data[0] && b.data[2] == three.data[0] && b.data[3] == three.data[1],
+            "exr-missing-channels: Y and A read gray RGBA in both modes", "wrong");
+    mt_image_free(&a);
+    mt_image_free(&b);
+    /* Y beside R, G, B: RgbaInputFile takes Y (gray) in pbrt-v2 mode; the
+     * colour channels corrected */
+    ok = write_exr(yrgb, &four, EXR_PIXEL_HALF, y_rgb, 0, 0) && read_mode(yrgb, V2, &a) &&
+         read_mode(yrgb, FIXED, &b);
+    ok = ok && a.channels == 1 && b.channels == 3;
+    for (k = 0; ok && k < 6; k++)
+        ok = a.data[k] == four.data[4 * k] && b.data[3 * k] == four.data[4 * k + 1] &&
+             b.data[3 * k + 2] == four.data[4 * k + 3];
+    t_check(ok, "exr-missing-channels: Y with R, G, B reads Y (gray) in pbrt-v2 mode, R, G, B corrected",
+            "wrong");
+    if (ok)
+        t_xfail("exr-missing-channels: an EXR with Y, R, G and B reads its colour",
+                "pbrt-v2 mode reads the gray Y = %g instead of (%g, %g, %g) (OpenEXR's "
+                "RgbaInputFile prefers Y): erratum exr-missing-channels, fixed by "
+                "MT_FIX_EXR_MISSING_CHANNELS",
+                (double)a.data[0], (double)b.data[0], (double)b.data[1], (double)b.data[2]);
     mt_image_free(&a);
     mt_image_free(&b);
     /* each bit alone */
-    ok = read_mode(y, FIXED & ~MT_FIX_EXR_MISSING_CHANNELS, &a) &&
-         read_mode(y, V2 | MT_FIX_EXR_MISSING_CHANNELS, &b);
-    t_check(ok && a.channels == 3 && a.data[0] == 0 && compare(&b, &gray, 1, identity, 0) == 0,
-            "exr-missing-channels: the bit alone decides black or gray", "wrong");
-    mt_image_free(&a);
-    mt_image_free(&b);
-    /* Y and A: black with alpha in pbrt-v2 mode, gray RGBA corrected */
-    ok = write_exr(ya, &three, EXR_PIXEL_HALF, y_a, 0, 0) && read_mode(ya, V2, &a) &&
-         read_mode(ya, FIXED, &b);
-    t_check(ok && a.channels == 4 && b.channels == 4 && a.data[0] == 0 && a.data[2] == 0 &&
-                a.data[3] == three.data[1] && b.data[0] == three.data[0] &&
-                b.data[2] == three.data[0] && b.data[3] == three.data[1],
-            "exr-missing-channels: Y and A read black RGBA in pbrt-v2 mode, gray RGBA "
-            "corrected",
-            "wrong");
+    ok = read_mode(yrgb, FIXED & ~MT_FIX_EXR_MISSING_CHANNELS, &a) &&
+         read_mode(yrgb, V2 | MT_FIX_EXR_MISSING_CHANNELS, &b);
+    t_check(ok && a.channels == 1 && b.channels == 3,
+            "exr-missing-channels: the bit alone decides Y or R, G, B", "wrong");
     mt_image_free(&a);
     mt_image_free(&b);
     /* no colour channel at all: black in pbrt-v2 mode, an error corrected */
@@ -279,8 +294,15 @@ static void test_exr_missing(void)
             "exr-missing-channels: an R-only file is (R, 0, 0) in both modes", "wrong");
     mt_image_free(&a);
     mt_image_free(&b);
+    /* luminance-chroma files, which RgbaInputFile converts: an error here */
+    mt_error_clear(&err);
+    t_check(write_exr(yc, &three, EXR_PIXEL_HALF, y_ry_by, 0, 0) &&
+                mt_image_read_mode(yc, V2, &b, &err) == MT_ERR_UNSUPPORTED &&
+                strstr(err.message, "yc.exr") && strstr(err.message, "RY"),
+            "exr: a luminance-chroma file (Y, RY, BY) is an error naming the file", "%s", err.message);
     mt_image_free(&gray);
     mt_image_free(&three);
+    mt_image_free(&four);
 }
 
 /* ---- pfm-rows --------------------------------------------------------- */
@@ -451,9 +473,10 @@ static void test_texture_path(void)
                     v2.f[0] != fx.f[0],
                 "texture path: a matte material with that Kd sees the difference",
                 "f %.9g vs %.9g", v2.f[0], fx.f[0]);
-        t_check(v2.y == 0 && fabs(fx.y - yimg.data[0]) <= 1e-6 * yimg.data[0],
-                "texture path: a float imagemap of a Y-only EXR is 0 in pbrt-v2 mode, Y in "
-                "corrected mode",
+        /* pbrt-v2 mode: Y through half (erratum exr-half); the 2012 source gave 0 */
+        t_check(fabs(v2.y - half_ref(yimg.data[0])) <= 1e-6 * yimg.data[0] &&
+                    fabs(fx.y - yimg.data[0]) <= 1e-6 * yimg.data[0],
+                "texture path: a float imagemap of a Y-only EXR is Y in both modes",
                 "%.9g and %.9g", v2.y, fx.y);
         t_check(printed_as(v2.p[0], 0.9f) && printed_as(fx.p[0], 0.2f),
                 "texture path: a PFM's top-left texel is the picture's bottom-left in pbrt-v2 "

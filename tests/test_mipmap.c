@@ -19,6 +19,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "materia/mipmap.h"
+#include "image/mipmap_impl.h"
 #include "support/check.h"
 #include "support/mipref.h"
 #include "support/tfiles.h"
@@ -36,7 +37,7 @@ static mt_mipmap *make(const mt_image *img, int trilinear, mt_wrap wrap, mt_mode
     return m;
 }
 
-static int is_pow2(int v) { return (v & (v - 1)) == 0; }
+static int is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
 static void gray_image(mt_image *img, int w, int h, float v)
 {
@@ -753,8 +754,19 @@ static void test_cache(void)
     t_tmpdir_remove();
 }
 
+/* pbrt-v2's IsPowerOf2 as released (commit c2b069e): 0 is not a power of 2
+ * (the 2012 source said it was); RoundUpPow2 as pbrt-v2's. */
+static void test_pow2_helpers(void)
+{
+    int v, ok = !mt__is_pow2(0) && !mt__is_pow2(-4) && mt__is_pow2(1) && mt__is_pow2(1 << 30);
+    for (v = 3; ok && v < 5000; v++) ok = mt__is_pow2(v) == ((v & (v - 1)) == 0);
+    t_check(ok && mt__round_up_pow2(5) == 8 && mt__round_up_pow2(8) == 8 && mt__round_up_pow2(1) == 1,
+            "IsPowerOf2(0) is false (pbrt-v2 c2b069e); powers of 2 and RoundUpPow2 as pbrt-v2's", "wrong");
+}
+
 int main(void)
 {
+    test_pow2_helpers();
     test_levels();
     test_wrap();
     test_constant();

@@ -108,6 +108,26 @@ static void test_types(void)
             "%g", f);
 }
 
+/* pbrt-v2's ParamSet keeps a list per type: "texture Kd" and "rgb Kd" live
+ * side by side (a material's GetSpectrumTexture takes the texture), while a
+ * second "color Kd" replaces the "rgb Kd" (one list of spectra). */
+static void test_lists_per_type(void)
+{
+    mt_error err;
+    const char *tex = NULL;
+    mt_rgb c = mt_rgb_black();
+    mt_real f = 0;
+    const mt_paramset *ps = params_of("\"texture Kd\" \"checks\" \"rgb Kd\" [0.9 0.9 0.9] \"color Kd\" [0.5 0.25 0.125] "
+                                      "\"float Kd\" 3",
+                                      NULL, &err);
+    if (!t_check(ps != NULL, "lists per type: parse", "%s", err.message)) return;
+    t_check(mt_paramset_count(ps) == 3 && mt_params_texture(ps, "Kd", &tex, &err) == MT_OK && tex &&
+                !strcmp(tex, "checks") && mt_params_rgb(ps, "Kd", mt_rgb_gray(0), &c, &err) == MT_OK &&
+                c.c[1] == (mt_real)0.25 && mt_params_float(ps, "Kd", 0, &f, &err) == MT_OK && f == 3,
+            "params: texture, spectrum and float of one name side by side; the second spectrum replaces the first",
+            "%d parameters, texture %s, rgb %g, float %g", mt_paramset_count(ps), tex ? tex : "(none)", c.c[1], f);
+}
+
 static void test_lookup_errors(void)
 {
     mt_error err;
@@ -116,7 +136,8 @@ static void test_lookup_errors(void)
     mt_vec3 v;
     int i = 0;
     const mt_paramset *ps =
-        params_of("\"float three\" [1 2 3]\n\"rgb Kd\" [1 2 3 4 5 6] \"float r\" 1", NULL, &err);
+        params_of("\"float three\" [1 2 3]\n\"rgb Kd\" [1 2 3 4 5 6] \"float r\" 1 "
+                  "\"blackbody bb\" [3000 0.5 6500 0.5]", NULL, &err);
     if (!t_check(ps != NULL, "lookup errors: parse", "%s", err.message)) return;
     mt_status rc;
     /* each call before its check: the check's arguments are read in any order */
@@ -130,6 +151,11 @@ static void test_lookup_errors(void)
     t_check(rc == MT_ERR_INVALID && strstr(err.message, "6 values") && err.line == 2 &&
                 err.column == 1,
             "one rgb, two given: error", "%d:%d: %s", err.line, err.column, err.message);
+    /* pbrt-v2's FindOneSpectrum ignores a parameter of two items (the default
+     * is used); materia says how many it found, counted as written */
+    rc = mt_params_rgb(ps, "bb", mt_rgb_gray(0), &c, &err);
+    t_check(rc == MT_ERR_INVALID && strstr(err.message, "one blackbody (a temperature and a scale), found 2"),
+            "one blackbody, two given: error counting pairs", "%s", err.message);
     rc = mt_params_rgb(ps, "r", mt_rgb_gray(0), &c, &err);
     t_check(rc == MT_ERR_INVALID && strstr(err.message, "float r") &&
                 strstr(err.message, "spectrum") && strcmp(err.param, "r") == 0 &&
@@ -170,11 +196,13 @@ static void test_replacement(void)
     const mt_paramset *ps =
         params_of("\"float a\" 1 \"float b\" 2 \"float a\" 3 \"rgb b\" [1 1 1]", NULL, &err);
     if (!t_check(ps != NULL, "replacement: parse", "%s", err.message)) return;
-    t_check(mt_paramset_count(ps) == 2 && mt_params_float(ps, "a", 0, &f, &err) == MT_OK && f == 3,
-            "a later parameter replaces an earlier one", "count %d a %g", mt_paramset_count(ps), f);
+    t_check(mt_paramset_count(ps) == 3 && mt_params_float(ps, "a", 0, &f, &err) == MT_OK && f == 3,
+            "a later parameter replaces an earlier one of its type", "count %d a %g", mt_paramset_count(ps), f);
+    /* pbrt-v2 keeps one list per type: "rgb b" replaces no "float b" */
     t_check(mt_params_rgb(ps, "b", mt_rgb_gray(0), &c, &err) == MT_OK && c.c[0] == 1 &&
-                strcmp(mt_paramset_at(ps, 1)->name, "b") == 0,
-            "even with another type, appended last", "%s", err.message);
+                mt_params_float(ps, "b", 0, &f, &err) == MT_OK && f == 2 &&
+                strcmp(mt_paramset_at(ps, 2)->name, "b") == 0,
+            "another type of the same name kept beside it (pbrt-v2's list per type)", "%s", err.message);
 }
 
 typedef struct warnings {
@@ -300,6 +328,7 @@ static void test_filenames(void)
 int main(void)
 {
     test_types();
+    test_lists_per_type();
     test_lookup_errors();
     test_declare_errors();
     test_replacement();

@@ -52,9 +52,10 @@ MT_API mt_status mt_image_read(const char *path, mt_image *img, mt_error *err);
  *   MT_FIX_EXR_HALF: EXR R, G and B (and Y) rounded to half, as its HALF
  *     frame buffer holds them; finite values beyond +-65504 saturate there
  *     (OpenEXR would make them infinite);
- *   MT_FIX_EXR_MISSING_CHANNELS: only R, G and B are read, a missing one as
- *     0: a Y-only file is black RGB, and a file with none of R, G, B is
- *     black rather than an error;
+ *   MT_FIX_EXR_MISSING_CHANNELS: as OpenEXR's RgbaInputFile reads it, a
+ *     Y channel is the image (gray) even beside R, G and B, and a file with
+ *     none of R, G, B and Y is black rather than an error (a Y-only file is
+ *     gray in both modes);
  *   MT_FIX_PFM_ROWS: PFM rows in file order, i.e. the picture upside down.
  * Alpha, PNG and the data window are read the same way in every mode.
  * mt_image_read(p, i, e) is mt_image_read_mode(p, MT_MODE_CORRECTED, i, e). */

@@ -68,7 +68,7 @@ MT_API mt_rgb mt_mipmap_lookup(const mt_mipmap *m, mt_real s, mt_real t, mt_real
  * texture (float_texture != 0; y() is mt_rgb_y); a one-channel file is gray
  * RGB first. The image is read with mt_image_read_mode(path, mode) (.exr,
  * .png, .pfm): in pbrt-v2 mode as pbrt-v2's ReadImage reads it (EXR colour
- * through half, Y-only EXR black, PFM upside down). Concurrent requests for
+ * through half, Y before R, G, B, PFM upside down). Concurrent requests for
  * one key read the file once; different keys are read at the same time.
  * The pyramid belongs to the cache: never
  * destroy it; it stays valid until mt_mipmap_cache_clear. Thread-safe.

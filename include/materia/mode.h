@@ -50,7 +50,7 @@ typedef unsigned mt_mode;
 #define MT_FIX_DOTS_INSIDE         (1u << 21) /* dots: "inside" drawn outside the dots */
 /* Image reading (pbrt-v2 ReadImage) */
 #define MT_FIX_EXR_HALF            (1u << 22) /* EXR colour read through half */
-#define MT_FIX_EXR_MISSING_CHANNELS (1u << 23) /* EXR without R, G, B (Y only) reads black */
+#define MT_FIX_EXR_MISSING_CHANNELS (1u << 23) /* EXR: Y before R, G, B; none of them black */
 #define MT_FIX_PFM_ROWS            (1u << 24) /* PFM rows kept in file order: upside down */
 /* Geometry layer, continued */
 #define MT_FIX_SHAPESET_HIT        (1u << 25) /* ShapeSet keeps the last hit; pdf counts one */

@@ -38,13 +38,13 @@ static mt_rgb fresnelblend_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
                                 mt_rgb_sub(mt_rgb_gray(1), fb->Rs)),
                      fi),
         fo);
-    mt_vec3 wh = mt_v3_add(wi, wo);
-    mt_real widotwh;
-    if (mt_v3_is_zero(wh)) return mt_rgb_black();
-    /* wi.wh = |wo + wi| / 2, symmetric in wo and wi (see microfacet.c) */
-    widotwh = mt_v3_len(wh) / 2;
-    wh = mt_v3_normalize(wh);
-    den = 4 * widotwh * mt_max(ci, co);
+    mt_vec3 wh;
+    mt_real widotwh, wodotwh;
+    if (mt_v3_is_zero(mt_v3_add(wi, wo))) return mt_rgb_black();
+    /* Dot(wi, wh), symmetric in wo and wi for directions of one length (see
+     * mt__half_cosines) */
+    widotwh = mt__half_cosines(wo, wi, &wh, &wodotwh);
+    den = 4 * mt_fabs(widotwh) * mt_max(ci, co);
     /* Both directions grazing (or wi = -wo up to rounding): pbrt-v2 divides by
      * zero; such directions carry no energy (erratum grazing-division). */
     if (den == 0) return diffuse;

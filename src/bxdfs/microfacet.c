@@ -26,18 +26,13 @@ static mt_real vcavity_g(mt_vec3 wo, mt_vec3 wi, mt_vec3 wh, mt_real wodotwh)
 static mt_rgb microfacet_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
 {
     const microfacet *m = (const microfacet *)b;
-    mt_real costhetao = mt_abs_cos_theta(wo), costhetai = mt_abs_cos_theta(wi), costhetah;
+    mt_real costhetao = mt_abs_cos_theta(wo), costhetai = mt_abs_cos_theta(wi), costhetah, wodotwh;
     mt_vec3 wh;
     mt_rgb F;
     if (costhetai == 0 || costhetao == 0) return mt_rgb_black();
-    wh = mt_v3_add(wi, wo);
-    if (mt_v3_is_zero(wh)) return mt_rgb_black();
-    /* wi.wh = wo.wh = |wo + wi| / 2 for unit directions. pbrt-v2 takes the dot
-     * products of the rounded wh, which differ between (wo, wi) and (wi, wo)
-     * by up to 1e-5 relative near grazing; the half length is the same value
-     * in exact arithmetic and makes f reciprocal to the last bit. */
-    costhetah = mt_v3_len(wh) / 2;
-    wh = mt_v3_normalize(wh);
+    if (mt_v3_is_zero(mt_v3_add(wi, wo))) return mt_rgb_black();
+    /* Dot(wi, wh) and AbsDot(wo, wh) (see mt__half_cosines) */
+    costhetah = mt__half_cosines(wo, wi, &wh, &wodotwh);
     /* pbrt-v2 takes Dot(wi, wh), never negative for wh = normalize(wo + wi);
      * corrected mode turns wh to +z first, so a dielectric seen from below
      * uses its inside index (erratum microfacet-fresnel-cosine). */
@@ -46,7 +41,7 @@ static mt_rgb microfacet_f(const mt_bxdf *b, mt_vec3 wo, mt_vec3 wi)
     /* R * D * G * F / (4 cos cos), multiplied in pbrt-v2's order */
     return mt_rgb_divs(mt_rgb_mul(mt_rgb_scale(mt_rgb_scale(m->R, mt_distribution_d(&m->dist, wh,
                                                                                     b->mode)),
-                                               vcavity_g(wo, wi, wh, mt_fabs(costhetah))),
+                                               vcavity_g(wo, wi, wh, wodotwh)),
                                   F),
                        4 * costhetai * costhetao);
 }

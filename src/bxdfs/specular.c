@@ -59,9 +59,15 @@ static mt_rgb specular_transmission_sample_f(const mt_bxdf *b, mt_vec3 wo, mt_ve
         /* pbrt-v2 scales wo's x and y but takes sin^2 from 1 - z^2; in float
          * the two disagree by ~1e-7 near the normal, and eta = 100 makes that
          * a 2e-4 error in |wi|. Such a direction is renormalized; ordinary
-         * ones (error ~1e-7) are left bit for bit as pbrt-v2 computes them. */
+         * ones (error ~1e-7) are left bit for bit as pbrt-v2 computes them.
+         * A wo clearly not unit itself (beyond 1e-5: a direction rounded to
+         * float and read in double is unit to 1e-9) comes from pbrt-v2's frame
+         * that is not orthonormal (erratum bsdf-frame), where every sampled
+         * direction has the frame's lengths: that wi is kept as pbrt-v2
+         * computes it too. */
         mt_real l2 = mt_v3_len2(*wi);
-        if (mt_fabs(l2 - 1) > 64 * MT_REAL_EPSILON) *wi = mt_v3_scale(*wi, 1 / mt_sqrt(l2));
+        if (mt_fabs(l2 - 1) > 64 * MT_REAL_EPSILON && mt_fabs(mt_v3_len2(wo) - 1) <= (mt_real)1e-5)
+            *wi = mt_v3_scale(*wi, 1 / mt_sqrt(l2));
     }
     *pdf = 1;
     F = mt_fresnel_evaluate(&s->fresnel, mt_cos_theta(wo));

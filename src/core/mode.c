@@ -201,9 +201,12 @@ static const mt_erratum errata[] = {
      "the stored precision (float and uint channels read exactly)"},
     {"exr-missing-channels", MT_FIX_EXR_MISSING_CHANNELS, "texture",
      "imageio.cpp ReadImageEXR",
-     "only the channels R, G and B are read, each missing one filled with 0: a luminance "
-     "(Y-only) file, or one with no R, G or B at all, reads black",
-     "Y alone is gray (Y, Y, Y); a file with none of R, G, B and Y is an error"},
+     "reads through OpenEXR's RgbaInputFile (pbrt-v2 commit 4a851f4), which takes a Y channel "
+     "for the whole image: a file with Y beside R, G and B reads gray Y, its colour ignored; a "
+     "file with none of R, G, B and Y reads black (the 2012 source read R, G and B alone, so a "
+     "Y-only file was black: the release reads it gray, and so do both modes)",
+     "R, G and B when there are any, else Y as gray; a file with none of R, G, B and Y is an "
+     "error"},
     {"pfm-rows", MT_FIX_PFM_ROWS, "texture", "imageio.cpp ReadImagePFM",
      "keeps the rows in file order, but PFM stores them bottom to top: the image is upside "
      "down relative to the same picture as EXR (row y of the texture is the file's row "
@@ -211,14 +214,15 @@ static const mt_erratum errata[] = {
      "back flips it",
      "the file's first row is the image's bottom row, as the format says"},
     {"exr-data-window", 0, "texture", "imageio.cpp ReadImageEXR",
-     "the frame buffer's slices start at the pixel buffer without subtracting the data "
-     "window's origin, so a data window not at (0, 0) makes OpenEXR write outside the buffer "
-     "(undefined behaviour)",
-     "the data window is read as the image wherever it lies (both modes)"},
+     "fixed in pbrt-v2 as released (commit 4a851f4 offsets the frame buffer by the window's "
+     "origin); the 2012 source's slices started at the pixel buffer, so a data window not at "
+     "(0, 0) made OpenEXR write outside it",
+     "the data window is read as the image wherever it lies (both modes, as the release)"},
     {"mix-overflow", 0, "material", "mixmat.cpp MixMaterial::GetBSDF",
-     "a mix whose two materials have more than 8 BxDFs between them writes past the BSDF's "
-     "array (its Assert is compiled out in release builds)",
-     "an error when the mix is created (both modes)"},
+     "a mix whose two materials add more than 8 BxDFs between them at a point writes past the "
+     "BSDF's array (its Assert is compiled out in release builds)",
+     "an error when the mix is created if its materials can add more than 8 at some point (a lobe "
+     "that a constant black parameter leaves out everywhere does not count; both modes)"},
     {"specular-transmission-eta2", 0, "bxdf",
      "reflection.cpp SpecularTransmission::Sample_f",
      "the (eta_i/eta_t)^2 radiance scaling is commented out: the weight is (1 - F) T, the "

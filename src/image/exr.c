@@ -12,12 +12,15 @@
  * convert 4-channel half data into interleaved float RGBA gives wrong
  * pixels, so the library is never asked to convert.)
  *
- * pbrt-v2's ReadImageEXR reads R, G and B only, into HALF slices filled
- * with 0: without MT_FIX_EXR_MISSING_CHANNELS, Y is ignored (a Y-only file
- * is black RGB), and without MT_FIX_EXR_HALF the colour channels are
- * rounded to half (mt__float_through_half). pbrt-v2's slices are not offset
- * by the data window's origin (undefined behaviour for a window not at 0,
- * 0); the window is the image here in every mode.
+ * pbrt-v2's ReadImageEXR (e6f6334; commit 4a851f4 replaced the 2012 frame
+ * buffer of R, G and B slices, which read a Y-only file black and wrote
+ * outside its buffer for a data window not at (0, 0)) reads through
+ * RgbaInputFile, whose pixels are half: a file with a Y channel is gray Y,
+ * its R, G and B ignored (without MT_FIX_EXR_MISSING_CHANNELS); otherwise R,
+ * G and B, a missing one 0, and black when none is there. Without
+ * MT_FIX_EXR_HALF the channels are rounded to half (mt__float_through_half).
+ * Luminance-chroma files (RY, BY), which RgbaInputFile converts, are an
+ * error here, as are subsampled channels.
  *
  * Writing: float R, G, B (and A) -- or Y for a one-channel image -- with ZIP
  * compression and the caller's string attributes, through a temporary file
@@ -175,6 +178,7 @@ typedef struct exr_reader {
     int type[NSLOTS];       /* the stored pixel type of each present slot */
     int dest[NSLOTS];       /* the image channel it fills, -1 for none */
     int gray;               /* Y fills R, G and B */
+    int chroma;             /* an RY or BY channel is present */
     int decoded;            /* how many slots are read (0: the image stays black) */
     int chunk_w, chunk_h;   /* the largest chunk */
     uint8_t *planes;        /* a plane of chunk_w * chunk_h stored values per decoded slot */
@@ -207,6 +211,7 @@ static mt_status find_channels(exr_reader *r, mt_error *err)
     if (rv != EXR_ERR_SUCCESS) return exr_fail(err, r->path, &r->stream, rv, "no channel list");
     for (i = 0; i < chl->num_channels; i++) {
         const exr_attr_chlist_entry_t *e = &chl->entries[i];
+        if (e->name.str && (!strcmp(e->name.str, "RY") || !strcmp(e->name.str, "BY"))) r->chroma = 1;
         for (k = 0; k < NSLOTS; k++) {
             if (!e->name.str || strcmp(e->name.str, slot_names[k]) != 0) continue;
             if (e->x_sampling != 1 || e->y_sampling != 1)
@@ -229,18 +234,27 @@ static mt_status find_channels(exr_reader *r, mt_error *err)
 static mt_status plan_channels(exr_reader *r, int *channels, mt_error *err)
 {
     int k, rgb = r->present[SLOT_R] || r->present[SLOT_G] || r->present[SLOT_B];
+    /* pbrt-v2 (since its commit 4a851f4) reads through OpenEXR's
+     * RgbaInputFile, which takes a Y channel for the whole image (gray) and
+     * ignores R, G and B then; corrected mode reads the colour channels when
+     * there are any (erratum exr-missing-channels) */
+    int use_y = r->present[SLOT_Y] && (!rgb || !(r->mode & MT_FIX_EXR_MISSING_CHANNELS));
     for (k = 0; k < NSLOTS; k++) r->dest[k] = -1;
-    /* pbrt-v2 mode: R, G and B whatever the file holds (erratum
-     * exr-missing-channels) */
-    if (rgb || !(r->mode & MT_FIX_EXR_MISSING_CHANNELS)) {
+    if (r->chroma)
+        return mt_error_set(err, MT_ERR_UNSUPPORTED,
+                            "%s: a luminance-chroma image (channels RY, BY), which materia does not "
+                            "read", r->path);
+    if (use_y) {
+        r->dest[SLOT_Y] = 0;
+        r->gray = r->present[SLOT_A];
+        *channels = r->present[SLOT_A] ? 4 : 1;
+    } else if (rgb || !(r->mode & MT_FIX_EXR_MISSING_CHANNELS)) {
+        /* a missing one reads 0, as in RgbaInputFile's frame buffer; no R,
+         * G, B or Y at all: black in pbrt-v2 mode */
         r->dest[SLOT_R] = r->present[SLOT_R] ? 0 : -1;
         r->dest[SLOT_G] = r->present[SLOT_G] ? 1 : -1;
         r->dest[SLOT_B] = r->present[SLOT_B] ? 2 : -1;
         *channels = r->present[SLOT_A] ? 4 : 3;
-    } else if (r->present[SLOT_Y]) {
-        r->dest[SLOT_Y] = 0;
-        r->gray = r->present[SLOT_A];
-        *channels = r->present[SLOT_A] ? 4 : 1;
     } else {
         return mt_error_set(err, MT_ERR_UNSUPPORTED,
                             "%s: no R, G, B or Y channel (materia reads RGB(A) and Y images)",

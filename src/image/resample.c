@@ -10,7 +10,9 @@
 #include "core/alloc.h"
 #include "image/mipmap_impl.h"
 
-int mt__is_pow2(int v) { return (v & (v - 1)) == 0; }
+/* pbrt-v2 IsPowerOf2 as released (commit c2b069e): 0 is not a power of 2.
+ * The MIP-map never asks about 0 (an image has at least one texel). */
+int mt__is_pow2(int v) { return v && !(v & (v - 1)); }
 
 int mt__round_up_pow2(int v)
 {

@@ -7,7 +7,7 @@ static const mt_tex_slot slots[] = {{"Kr", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specu
                                     {"Kt", 0, {1, 1, 1}, MT_RANGE_CLAMP0, "specular transmittance"},
                                     {"index", 1, {1.5f}, MT_RANGE_POS, "index of refraction (outside: 1)"}};
 
-static int glass_max(const mt_material *m) { return 2; }
+static int glass_max(const mt_material *m) { return mt__slot_may_be_nonblack(m, KR) + mt__slot_may_be_nonblack(m, KT); }
 
 static mt_real glass_eta(const mt_material *m, const mt_diffgeom *dgs) { return MT_FLOAT(m, INDEX, dgs); }
 

@@ -192,9 +192,8 @@ static int is_constant(const mt_texture *t) { return strcmp(mt_texture_class(t),
 int mt__material_is_uniform(const mt_material *m)
 {
     int i;
-    /* A constant bump map (shinymetal's default 0) moves the tangents by
-     * (d - d) / du = 0 whatever du the differentials give (mt_bump): the
-     * same frame without them. */
+    /* A constant bump map moves the tangents by (d - d) / du = 0 whatever du
+     * the differentials give (mt_bump): the same frame without them. */
     if (m->bump && !is_constant(m->bump)) return 0;
     for (i = 0; i < m->ops->nslots; ++i)
         if (!is_constant(m->tex[i])) return 0;
@@ -210,6 +209,21 @@ int mt__material_get_bssrdf_cached(const mt_material *m, const mt_diffgeom *dg_s
 }
 
 int mt__material_max_bxdfs(const mt_material *m) { return m->ops->max_bxdfs(m); }
+
+int mt__slot_constant(const mt_material *m, int i, mt_rgb *v)
+{
+    mt_diffgeom dg;
+    if (!is_constant(m->tex[i])) return 0;
+    dg = mt_diffgeom_default();
+    *v = mt_texture_eval_rgb(m->tex[i], &dg);
+    return 1;
+}
+
+int mt__slot_may_be_nonblack(const mt_material *m, int i)
+{
+    mt_rgb v;
+    return !mt__slot_constant(m, i, &v) || !mt_rgb_is_black(mt_rgb_clamp0(v));
+}
 
 mt_rgb mt__tex_rgb(const mt_texture *t, const mt_diffgeom *dg) { return mt_rgb_clamp0(mt_texture_eval_rgb(t, dg)); }
 mt_real mt__tex_float(const mt_texture *t, const mt_diffgeom *dg) { return mt_texture_eval_float(t, dg); }

@@ -108,6 +108,15 @@ int mt__mix_is_uniform(const mt_material *m);
 /* The most BxDFs the material can add. */
 int mt__material_max_bxdfs(const mt_material *m);
 
+/* 1 when tex[i] may be non-black at some point: 0 only for a constant
+ * texture whose value, clamped from below at 0, is black. A lobe that
+ * pbrt-v2 adds only for a non-black scale is never added for such a slot, so
+ * it does not count against the BSDF's MT_MAX_BXDFS (a mix's bound). */
+int mt__slot_may_be_nonblack(const mt_material *m, int i);
+
+/* 1 when tex[i] is a constant texture; its value (unclamped) in *v. */
+int mt__slot_constant(const mt_material *m, int i, mt_rgb *v);
+
 /* Evaluations shared by the materials: a spectrum texture clamped from below
  * (pbrt-v2's Evaluate(dgs).Clamp()), and a float texture. */
 mt_rgb mt__tex_rgb(const mt_texture *t, const mt_diffgeom *dg);

@@ -3,7 +3,7 @@
 
 static const mt_tex_slot slots[] = {{"Kr", 0, {0.9f, 0.9f, 0.9f}, MT_RANGE_CLAMP0, "specular reflectance (no Fresnel term)"}};
 
-static int mirror_max(const mt_material *m) { return 1; }
+static int mirror_max(const mt_material *m) { return mt__slot_may_be_nonblack(m, 0); }
 
 static mt_status mirror_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
 {

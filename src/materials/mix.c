@@ -3,7 +3,9 @@
  * wrapped in a ScaledBxDF: namedmaterial1's by amount, namedmaterial2's by
  * 1 - amount (both clamped from below). pbrt-v2 writes the second material's
  * components after the first's without a bound, past its 8 slots when they
- * are more (erratum mix-overflow): here such a mix is an error when created.
+ * are more (erratum mix-overflow): here a mix that can make more than 8 at
+ * some point is an error when created (a lobe that a constant black parameter
+ * leaves out at every point does not count).
  * A missing named material is an error (pbrt-v2 warns and uses a matte).
  */
 #include <stdio.h>

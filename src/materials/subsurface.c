@@ -18,7 +18,7 @@ typedef struct subsurface {
     mt_real scale;
 } subsurface;
 
-static int ss_max(const mt_material *m) { return 1; }
+static int ss_max(const mt_material *m) { return mt__slot_may_be_nonblack(m, KR); }
 
 static mt_status ss_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
 {

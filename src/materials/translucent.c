@@ -16,7 +16,11 @@ static const mt_tex_slot slots[] = {
     {"reflect", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "scale of the reflected lobes"},
     {"transmit", 0, {0.5f, 0.5f, 0.5f}, MT_RANGE_CLAMP0, "scale of the transmitted lobes"}};
 
-static int translucent_max(const mt_material *m) { return 4; }
+static int translucent_max(const mt_material *m)
+{
+    int r = mt__slot_may_be_nonblack(m, REFLECT), t = mt__slot_may_be_nonblack(m, TRANSMIT);
+    return (mt__slot_may_be_nonblack(m, KD) + mt__slot_may_be_nonblack(m, KS)) * (r + t);
+}
 
 #define TRANSLUCENT_IOR 1.5f
 

@@ -21,7 +21,19 @@ static const mt_tex_slot slots[] = {
      "weight of the lobes; 1 - opacity passes straight through (above 1: negative, erratum uber-opacity; "
      "clamped to [0, 1] in corrected mode)"}};
 
-static int uber_max(const mt_material *m) { return 5; }
+/* The lobes uber_add can add: the transmission of 1 - opacity unless the
+ * opacity is the constant 1 (after the mode's clamp), and each scale's lobe
+ * unless it or the opacity is a constant black. */
+static int uber_max(const mt_material *m)
+{
+    mt_rgb op;
+    int n;
+    if (!mt__slot_constant(m, OPACITY, &op)) return 5;
+    op = (m->mode & MT_FIX_UBER_OPACITY) ? mt_rgb_clamp(op, 0, 1) : mt_rgb_clamp0(op);
+    n = !mt_rgb_equal(op, mt_rgb_gray(1));
+    if (mt_rgb_is_black(op)) return n;
+    return n + mt__slot_may_be_nonblack(m, KD) + mt__slot_may_be_nonblack(m, KS) + mt__slot_may_be_nonblack(m, KR) + mt__slot_may_be_nonblack(m, KT);
+}
 
 static mt_status uber_add(const mt_material *m, mt_bsdf *b, const mt_diffgeom *dgs, mt_arena *a, mt_error *err)
 {

@@ -15,6 +15,7 @@
 #include "materia/params.h"
 #include "params/numcheck.h"
 #include "params/path.h"
+#include "params/paramset_internal.h"
 
 typedef struct entry {
     mt_param p; /* every pointer in p is owned by the entry */
@@ -200,6 +201,20 @@ static int index_of(const mt_paramset *ps, const char *name)
     return -1;
 }
 
+/* pbrt-v2's ParamSet keeps one list per type (floats, ints, bools, points,
+ * vectors, normals, spectra, strings, textures), so "texture Kd" and "rgb Kd"
+ * live side by side and each lookup reads its own list (a material's
+ * GetSpectrumTexture takes the texture first). The parameter called name of
+ * type want, else the first of that name (for the type error), else -1. */
+static int index_of_type(const mt_paramset *ps, const char *name, mt_param_type want)
+{
+    int i;
+    if (!ps || !name) return -1;
+    for (i = 0; i < ps->n; ++i)
+        if (ps->e[i].p.type == want && strcmp(ps->e[i].p.name, name) == 0) return i;
+    return index_of(ps, name);
+}
+
 mt_status mt_paramset_add(mt_paramset *ps, const mt_param *p, mt_error *err)
 {
     mt_status st = check_param(p, err);
@@ -211,8 +226,10 @@ mt_status mt_paramset_add(mt_paramset *ps, const mt_param *p, mt_error *err)
     }
     if (!reserve(ps, ps->n + 1) || !entry_copy(&e, p, 0))
         return mt_error_param(err, MT_ERR_NOMEM, p->name, "out of memory");
-    /* pbrt-v2 erases the earlier parameter and appends the new one. */
-    old = index_of(ps, p->name);
+    /* pbrt-v2 erases the earlier parameter of its list and appends the new
+     * one; a parameter of another type keeps its place (index_of_type) */
+    old = index_of_type(ps, p->name, p->type);
+    if (old >= 0 && ps->e[old].p.type != p->type) old = -1;
     if (old >= 0) {
         entry_free(&ps->e[old]);
         memmove(&ps->e[old], &ps->e[old + 1], (size_t)(ps->n - old - 1) * sizeof *ps->e);
@@ -235,14 +252,21 @@ const mt_param *mt_paramset_find(const mt_paramset *ps, const char *name)
     return i >= 0 ? &ps->e[i].p : NULL;
 }
 
+const mt_param *mt__paramset_find_type(const mt_paramset *ps, const char *name, mt_param_type type)
+{
+    int i = index_of_type(ps, name, type);
+    return i >= 0 && ps->e[i].p.type == type ? &ps->e[i].p : NULL;
+}
+
 /* Lookups mark through a const list: the used flags are bookkeeping, not
  * part of the list's value (the list itself was allocated writable). */
 static void mark(const mt_paramset *ps, int i) { ((mt_paramset *)ps)->e[i].used = 1; }
 
 void mt_paramset_mark_used(const mt_paramset *ps, const char *name)
 {
-    int i = index_of(ps, name);
-    if (i >= 0) mark(ps, i);
+    int i;
+    for (i = 0; ps && name && i < ps->n; ++i)
+        if (strcmp(ps->e[i].p.name, name) == 0) mark(ps, i);
 }
 
 static mt_status fail(const mt_param *p, mt_status st, mt_error *err)
@@ -258,7 +282,7 @@ static mt_status fail(const mt_param *p, mt_status st, mt_error *err)
 static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type want, int single,
                         const mt_param **found, mt_error *err)
 {
-    int i = index_of(ps, name);
+    int i = index_of_type(ps, name, want);
     const mt_param *p;
     *found = NULL;
     if (i < 0) return MT_OK;
@@ -270,7 +294,12 @@ static mt_status lookup(const mt_paramset *ps, const char *name, mt_param_type w
         return fail(p, MT_ERR_INVALID, err);
     }
     if (single && p->count != 1) {
-        if (type_width(p->type) == 3)
+        if (!strcmp(p->type_name, "blackbody")) /* read as pairs, stored as rgb */
+            mt_error_param(err, MT_ERR_INVALID, name,
+                           "expected one blackbody (a temperature and a scale), found %d", p->count);
+        else if (!strcmp(p->type_name, "spectrum")) /* pairs or a file name, stored as rgb */
+            mt_error_param(err, MT_ERR_INVALID, name, "expected one spectrum, found %d", p->count);
+        else if (type_width(p->type) == 3)
             mt_error_param(err, MT_ERR_INVALID, name,
                            "expected one %s (3 values), found %d values", p->type_name,
                            p->count * 3);

@@ -332,15 +332,19 @@ static mt_status read_param(source *S, mt_error *err)
                            "found %s", decl, describe(&S->tok, buf, sizeof buf));
     }
     if (st == MT_OK) {
+        int before = mt_paramset_count(S->params), had;
         mt__decl_name(decl, name, sizeof name);
-        if (name[0] && mt_paramset_find(S->params, name))
-            mt__warnf(S->P->warn, S->P->warn_ctx, S->name, site.line, "Parameter \"%s\" given twice in one %s statement; the last one is used",
-                 name, S->d->name);
+        had = name[0] && mt_paramset_find(S->params, name);
         v.nums = S->nums;
         v.nnums = S->nnums;
         v.strs = (const char *const *)S->vals;
         v.nstrs = S->nvals;
         st = mt__param_declare(S->params, decl, &v, &site, err);
+        /* the list did not grow: it replaced one of its type (pbrt-v2 keeps
+         * one list per type; "texture Kd" beside "rgb Kd" replaces nothing) */
+        if (st == MT_OK && had && mt_paramset_count(S->params) == before)
+            mt__warnf(S->P->warn, S->P->warn_ctx, S->name, site.line, "Parameter \"%s\" given twice in one %s statement; the last one is used",
+                 name, S->d->name);
     }
     mt__free(decl);
     clear_values(S);

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include "textures/probe.h"
 #include "textures/tex.h"
+#include "params/paramset_internal.h"
 
 static mt__texparams_probe_fn probe_fn;
 static void *probe_ctx;
@@ -115,8 +116,8 @@ static const mt_param *texture_param(const mt_texparams *tp, const char *name,
     lists[0] = tp->geom;
     lists[1] = tp->material;
     for (i = 0; i < 2; ++i) {
-        const mt_param *p = lists[i] ? mt_paramset_find(lists[i], name) : NULL;
-        if (p && p->type == MT_PARAM_TEXTURE) {
+        const mt_param *p = lists[i] ? mt__paramset_find_type(lists[i], name, MT_PARAM_TEXTURE) : NULL;
+        if (p) {
             *list = lists[i];
             return p;
         }

@@ -128,8 +128,8 @@ static void materials(void)
     const char *const *types = mt_material_types(&n);
     emit("## Materials\n\n"
          "Every material but `mix` also takes `\"texture bumpmap\"`, a float texture whose value displaces the\n"
-         "surface along its normal for the shading frame (none by default; `shinymetal` always bump-maps,\n"
-         "with 0 by default, as pbrt-v2 does). A parameter of kind *texture* is a value (`\"float roughness\"\n"
+         "surface along its normal for the shading frame (none by default, for every material, as in\n"
+         "pbrt-v2 as released). A parameter of kind *texture* is a value (`\"float roughness\"\n"
          "[0.1]`, `\"rgb Kd\" [0.5 0.5 0.5]`) or a texture of that kind (`\"texture Kd\" \"name\"`). A constant\n"
          "outside its range is an error when the material is created (the file, line and parameter are\n"
          "named); a texture that varies is evaluated where it is used.\n\n");
