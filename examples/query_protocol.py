@@ -19,7 +19,7 @@ import math
 import os
 import sys
 
-PROTOCOL = 1  # the version of docs/PROTOCOL.md these lines follow
+PROTOCOL = 2  # the version of docs/PROTOCOL.md these lines follow
 
 QUERIES = ("version", "conventions", "mode", "at", "eval", "sample", "rho", "bssrdf", "shading", "texture")
 
@@ -153,10 +153,22 @@ def reply(fn):
 
 
 def serve(session, infd=0, out=None):
-    """Answers the lines of infd until its end. Whatever has arrived is
-    answered and written at once: a client that keeps the pipe full gets large
-    writes, one that sends a line and waits gets its answer."""
+    """Answers the lines of infd until its end, or until the reader of the
+    answers goes away (a reproducer piped into `head`: status 0, no traceback).
+    Whatever has arrived is answered and written at once: a client that keeps
+    the pipe full gets large writes, one that sends a line and waits gets its
+    answer."""
     out = out or sys.stdout.buffer
+    try:
+        return serve_lines(session, infd, out)
+    except BrokenPipeError:
+        # nobody reads the answers any more; stop Python's own flush at exit
+        # from reporting the same closed pipe
+        os.dup2(os.open(os.devnull, os.O_WRONLY), out.fileno())
+        return 0
+
+
+def serve_lines(session, infd, out):
     pending, rest = None, b""
     while True:
         chunk = os.read(infd, 1 << 16)

@@ -26,8 +26,8 @@ direction; the protocol's f is without it, so the adapter divides by the
 cosine of the direction as Mitsuba received it (a float), and answers f = 0
 where that cosine is 0. A sample's f is its weight times its pdf over that
 cosine (the weight is f |cos| / pdf); a sample whose weight is 0 in every
-channel is failed unless its direction has a pdf > 0 by BSDF.pdf (Mitsuba marks
-invalid samples by a zero weight; a black lobe's valid samples keep theirs).
+channel is failed: Mitsuba marks an invalid sample so, and its own chi2 test
+(mitsuba.chi2.BSDFAdapter) drops such samples too.
 """
 import math
 import os
@@ -229,10 +229,10 @@ class Session:
         if not pdf > 0 or c == 0:
             return qp.FAILED_SAMPLE
         if weight[0] == 0 and weight[1] == 0 and weight[2] == 0:
-            # Mitsuba zeroes the weight of an invalid sample; a valid sample of
-            # a black lobe has a density there
-            if t & DELTA or not b.pdf(self.ctx, si, w) > 0:
-                return qp.FAILED_SAMPLE
+            # Mitsuba zeroes the weight of an invalid sample (a microfacet seen
+            # from behind, a reflection below the horizon) and keeps its
+            # direction and pdf: failed, as Mitsuba's own chi2 test counts it
+            return qp.FAILED_SAMPLE
         k = pdf / c
         wi = self.world(w)
         return "%.9g %.9g %.9g %.9g %.9g %.9g %.9g %d" % (wi[0], wi[1], wi[2], weight[0] * k, weight[1] * k,

@@ -21,8 +21,9 @@ dictionary mi.load_dict() takes. What maps, with which conversion, and what is
   shinymetal, substrate, translucent, measured: unsupported
   "mitsuba:PLUGIN"
                any Mitsuba BSDF plugin by name, its parameters by Mitsuba's names
-               (float, integer, bool, string, rgb, spectrum, texture), inside twosided
-               unless it transmits or "bool twosided" "false" is given
+               (float, integer, bool, string, rgb, spectrum, texture; "string bsdf"
+               and "string bsdf_0", "bsdf_1" name the named materials it nests),
+               inside twosided unless it transmits or "bool twosided" "false" is given
 
 A pbrt-v2 Blinn exponent e = 1/roughness (clamped to 10000, as pbrt-v2's Blinn
 does) becomes the Beckmann alpha with the same second moment of the slopes,
@@ -341,12 +342,19 @@ MAKERS = {"matte": matte, "plastic": plastic, "glass": glass, "mirror": mirror, 
 
 
 def passthrough(plugin, ps, state):
-    """Material "mitsuba:PLUGIN": Mitsuba's parameters under their own names."""
-    props, sided = {}, True
+    """Material "mitsuba:PLUGIN": Mitsuba's parameters under their own names; a
+    string parameter named bsdf, bsdf_0, bsdf_1 names a named material, the
+    plugin's nested BSDF (mask, blendbsdf, twosided)."""
+    props, nested, sided = {}, {}, True
     for p in ps.by_name.values():
         p.used = True
         if p.name == "twosided" and p.type == "bool":
             sided = p.values[0]
+            continue
+        if p.type == "string" and p.name.startswith("bsdf"):
+            if p.values[0] not in state.named:
+                raise InputError('parameter "%s": no named material "%s"' % (p.name, p.values[0]))
+            nested[p.name] = require(state.named[p.values[0]])
             continue
         if p.type == "texture":
             src = state.color_tex.get(p.values[0], state.float_tex.get(p.values[0]))
@@ -366,6 +374,8 @@ def passthrough(plugin, ps, state):
 
     def build(b):
         d = clone(props)
+        for k, m in nested.items():
+            d[k] = m.build(b)
         if sided:
             try:
                 flags = mi.load_dict(d).flags()
