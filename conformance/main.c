@@ -6,7 +6,7 @@
  * it pass, the row is an expected failure (XFAIL) naming the erratum and the
  * measured deviation; otherwise it is a failure.
  *
- *   materia-conformance [--full] [--only TEXT] [--threads N]
+ *   materia-conformance [--full | --lite] [--only REGEX] [--skip REGEX] [--threads N]
  *   materia-conformance --errata             the measured size of each erratum
  *   materia-conformance --dump FILE          values for the float/double comparison
  *   materia-conformance --ulps OTHER_BINARY  compare with the other precision
@@ -271,22 +271,25 @@ static const char usage_text[] =
     "       materia-conformance --impl 'COMMAND' ... | --impl-inprocess ... (--impl --help)\n"
     "Runs the physics checks of every BxDF configuration in the catalog, in both modes\n"
     "(docs/CONFORMANCE-SUITE.md).\n"
-    "  --full          40 times the samples and 10 times the cells (slow); default: 100000\n"
-    "                  samples per direction, 24 x 25 cells at most\n"
-    "  --lite          fewer samples (what the sanitizer builds run)\n"
+    "  --full          4000000 samples per direction, 100 x 101 cells at most (slow); default:\n"
+    "                  100000 samples, 24 x 25 cells\n"
+    "  --lite          20000 samples, 16 x 17 cells (what the sanitizer builds run; default: not)\n"
     "  --only REGEX    only the configurations whose name matches REGEX, a POSIX extended\n"
     "                  regular expression (default: all; \"pointwise\": the checks that are not\n"
     "                  per configuration alone); an error when none does\n"
     "  --skip REGEX    leave out the configurations whose name matches REGEX (default: none)\n"
     "  --threads N     worker threads, 1 to 16 (default: the processors online)\n"
     "  --ulps OTHER    compare with the other precision's materia-conformance (default: not)\n"
-    "  --errata        the measured size of each pbrt-v2 erratum\n"
+    "  --errata        the measured size of each pbrt-v2 erratum, instead of the checks\n"
     "  --write-data DIR  writes the files the --impl catalog and vectors/ name as @DATA@ (two\n"
-    "                  spectra and a MERL table) into DIR\n"
-    "  --dump FILE     the values the float/double comparison reads\n"
-    "  --impl COMMAND  another implementation through the query protocol (--impl --help)\n"
-    "  --impl-inprocess  materia itself in this process, as --impl runs it (--impl --help)\n"
-    "  --help          this help\n"
+    "                  spectra and a MERL table) into DIR, instead of the checks\n"
+    "  --dump FILE     writes the values the float/double comparison reads, instead of the\n"
+    "                  checks\n"
+    "  --impl COMMAND  another implementation through the query protocol, instead of the\n"
+    "                  suite's own run (--impl --help)\n"
+    "  --impl-inprocess  materia itself in this process, as --impl runs it, instead of the\n"
+    "                  suite's own run (--impl --help)\n"
+    "  --help, -h      this help\n"
     "  --version       materia's version and precision\n"
     "Exit status: 0 all passed, 1 a check failed, 2 wrong command line.\n";
 
