@@ -129,6 +129,14 @@ static void conformance(void)
         {"--only selecting nothing", "--impl q --only 'no such configuration' --plots pl", "selects no configuration"},
         {"--report in a missing directory", "--impl q --report nosuchdir/r.json", "--report: cannot write \"nosuchdir/r.json\""},
         {"--plots-all without --plots", "--impl q --plots-all", "--plots-all needs --plots"},
+        {"an unknown --compare", "--impl q --compare pbrt", "--compare: \"pbrt\""},
+        {"an unknown --check", "--impl q --check chi3", "--check: \"chi3\""},
+        {"an unknown --transport", "--impl q --transport adjoint", "--transport: \"adjoint\""},
+        {"--sample-numbers 4", "--impl q --sample-numbers 4", "--sample-numbers: \"4\""},
+        {"--significance 1", "--impl q --significance 1", "--significance: \"1\""},
+        {"--wo negative", "--impl q --wo -1", "--wo: \"-1\""},
+        {"--impl with --impl-inprocess", "--impl q --impl-inprocess", "--impl and --impl-inprocess name two"},
+        {"a --catalog that does not exist", "--impl q --catalog no-such-catalog.txt", "no-such-catalog.txt:"},
     };
     size_t i;
     t_tool_check("conformance: --only that selects nothing is status 2", "materia-conformance",

@@ -3,7 +3,12 @@
  * one line out (protocol in include/materia/query.h and README.md). It never
  * stops on a bad line: it answers "error <message>" and goes on.
  *
- *   materia-query [--dir DIR] < queries > answers
+ *   materia-query [--dir DIR] [--transport importance|radiance] < queries > answers
+ *
+ * --transport radiance turns on materia's radiance-transmission option
+ * (MT_OPT_RADIANCE_TRANSMISSION: specular transmission scaled by
+ * (eta_t/eta_i)^2, pbrt-v3's radiance mode) in both modes; the
+ * "conventions" query says which.
  *
  * Warnings (parameters a statement did not use, redefinitions) go to standard
  * error as "warning FILE:LINE: MESSAGE"; standard output carries one answer
@@ -85,6 +90,7 @@ static char *next_line(reader *r, int *oom)
 int main(int argc, char **argv)
 {
     const char *dir = NULL;
+    int radiance = 0;
     mt_query *q;
     mt_error err;
     char out[4096];
@@ -95,12 +101,21 @@ int main(int argc, char **argv)
             if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
             dir = argv[++i];
             if (!tool_directory("materia-query", "--dir", dir)) return 1;
-        }
-        else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: materia-query [--dir DIR] < queries\n"
+        } else if (!strcmp(argv[i], "--transport")) {
+            if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
+            ++i;
+            if (strcmp(argv[i], "importance") && strcmp(argv[i], "radiance")) {
+                fprintf(stderr, "materia-query: --transport: \"%s\" is neither importance nor radiance\n", argv[i]);
+                return 2;
+            }
+            radiance = !strcmp(argv[i], "radiance");
+        } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: materia-query [--dir DIR] [--transport importance|radiance] < queries\n"
                    "       materia-query --help | --version\n"
                    "Answers one line per query on standard output (see README.md, \"The query tool\");\n"
                    "relative file names resolve against DIR (default: the current directory).\n"
+                   "--transport radiance scales specular transmission by (eta_t/eta_i)^2 (radiance\n"
+                   "transport, as pbrt-v3); the default is pbrt-v2's importance.\n"
                    "Warnings go to standard error as \"warning FILE:LINE: MESSAGE\".\n");
             return 0;
         } else if (!strcmp(argv[i], "--version")) {
@@ -118,6 +133,7 @@ int main(int argc, char **argv)
         return 1;
     }
     mt_query_set_warning(q, warn, NULL);
+    if (radiance) mt_query_set_options(q, MT_OPT_RADIANCE_TRANSMISSION);
     setvbuf(stdout, NULL, _IOFBF, 1 << 16);
     for (;;) {
         int oom = 0;
