@@ -263,7 +263,8 @@ int cf_helmholtz(cf_ctx *x)
         for (i = 0; i < np; ++i) ws[w * np + i] = there[w] ? cf_v3_make(there[w]->wi[0], there[w]->wi[1], there[w]->wi[2]) : wo[w];
     }
     if ((r = t->ops->sample(t, np * nw, ws, (const float(*)[3])u, s2))) goto out;
-    /* the index inside / outside each pair gives, by Snell's law */
+    /* the index inside / outside each pair gives, by Snell's law (inside:
+     * below the shading normal, about which the BSDF refracts) */
     for (w = 0; w < nw; ++w) {
         const cf_samp *a = there[w];
         cf_v3 wi;
@@ -272,7 +273,7 @@ int cf_helmholtz(cf_ctx *x)
         wi = cf_v3_make(a->wi[0], a->wi[1], a->wi[2]);
         so = cf_sin_about(wo[w], x->ns);
         si = cf_sin_about(wi, x->ns);
-        if (so > SNELL_MIN_SIN && si > SNELL_MIN_SIN) etas[x->eta_n++] = cf_dot(wo[w], x->ng) > 0 ? so / si : si / so;
+        if (so > SNELL_MIN_SIN && si > SNELL_MIN_SIN) etas[x->eta_n++] = cf_dot(wo[w], x->ns) > 0 ? so / si : si / so;
     }
     if (x->eta_n) {
         qsort(etas, (size_t)x->eta_n, sizeof *etas, cmp_double);
@@ -290,12 +291,15 @@ int cf_helmholtz(cf_ctx *x)
         si = cf_sin_about(wi, x->ns);
         ratio = so > SNELL_MIN_SIN && si > SNELL_MIN_SIN ? so / si : 0; /* eta_i / eta_o */
         eta = x->eta > 0 ? x->eta : 1;
-        if (ratio == 0) ratio = cf_dot(wo[w], x->ng) > 0 ? eta : 1 / eta;
+        if (ratio == 0) ratio = cf_dot(wo[w], x->ns) > 0 ? eta : 1 / eta;
         /* Snell's law is ill-conditioned near grazing refraction: an error
          * e in cos on one side is e (eta cos / cos')^2 on the other, and
-         * (1 - F) / cos' shares it; the tolerance follows the pair */
+         * (1 - F) / cos' shares it; the tolerance follows the pair. The
+         * suite's directions are floats, unit only to a float epsilon, and
+         * a refraction that scales x and y but takes z from 1 - sin^2
+         * carries that: a float epsilon at least, whatever the precision */
         cmin = fmin(fabs(cf_dot(wo[w], x->ns)), fabs(cf_dot(wi, x->ns)));
-        tol = 64 * t->eps * fmax(eta * eta, 1 / (eta * eta)) / fmax(cmin * cmin, 1e-12);
+        tol = 64 * fmax(t->eps, FLT_EPSILON) * fmax(eta * eta, 1 / (eta * eta)) / fmax(cmin * cmin, 1e-12);
         dd = sqrt((b->wi[0] - wo[w].x) * (b->wi[0] - wo[w].x) + (b->wi[1] - wo[w].y) * (b->wi[1] - wo[w].y) +
                   (b->wi[2] - wo[w].z) * (b->wi[2] - wo[w].z)) /
              tol;
@@ -309,7 +313,7 @@ int cf_helmholtz(cf_ctx *x)
         }
         worst = fmax(worst, ee);
         if (x->eta > 0 && so > SNELL_MIN_SIN && si > SNELL_MIN_SIN) {
-            double pe = cf_dot(wo[w], x->ng) > 0 ? so / si : si / so, de = fabs(pe - x->eta) / x->eta / tol;
+            double pe = cf_dot(wo[w], x->ns) > 0 ? so / si : si / so, de = fabs(pe - x->eta) / x->eta / tol;
             worst_eta = fmax(worst_eta, isfinite(de) ? de : 1e30);
             if (de > 1) {
                 cf_q_sample(q, sizeof q, wo[w], u[(size_t)w * np + (size_t)(a - (s1 + (size_t)w * np))]);

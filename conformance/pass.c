@@ -46,8 +46,10 @@
  * rounding e times (cf_allowance covers that). */
 #define IDENTITY_REL_FLOAT 1e-3
 #define IDENTITY_REL_DOUBLE 1e-5
-/* |wi| - 1: a direction normalized in float and printed with 9 digits is
- * within a few float epsilons (1e-5 is 84); in double, 64 epsilons */
+/* |wi| - 1: a direction normalized in float, or printed with 9 digits
+ * whatever the precision it was computed in, is within a few float
+ * epsilons (1e-5 is 84); one computed in double and received as it is (in
+ * this process), within 64 double epsilons */
 #define UNIT_TOL_FLOAT 1e-5
 #define UNIT_TOL_DOUBLE (64 * DBL_EPSILON)
 /* pilot samples per cell at least: the layout's quantiles need a few per
@@ -215,12 +217,12 @@ static int wo_samples(cf_ctx *x, cf_wo_data *d)
 {
     const cf_run *run = x->run;
     cf_impl *t = x->test;
-    long n = run->cfg.samples, i, np, *idx = NULL;
+    long n = run->cfg.samples, i, np, nw, *idx = NULL;
     float (*u)[3] = NULL;
     cf_samp *s = NULL;
     cf_v3 *wos = NULL, *wis = NULL;
     cf_eval *ev = NULL;
-    double unit_tol = t->eps < 1e-10 ? UNIT_TOL_DOUBLE : UNIT_TOL_FLOAT;
+    double unit_tol = t->eps < 1e-10 && t->direct ? UNIT_TOL_DOUBLE : UNIT_TOL_FLOAT;
     double id_tol = fmax(t->eps < 1e-10 ? IDENTITY_REL_DOUBLE : IDENTITY_REL_FLOAT, x->allow);
     cf_result *res = x->out->res;
     char q[200], an[240], ex[400], qs[200];
@@ -230,7 +232,10 @@ static int wo_samples(cf_ctx *x, cf_wo_data *d)
     d->n = n;
     u = malloc((size_t)n * sizeof *u);
     s = malloc((size_t)n * sizeof *s);
-    wos = malloc((size_t)n * sizeof *wos);
+    /* wo for every query of a batch: the samples, the pilot (np <= n) and
+     * the probes */
+    nw = n > cf_probe_count() ? n : cf_probe_count();
+    wos = malloc((size_t)nw * sizeof *wos);
     d->dirs = malloc((size_t)n * sizeof *d->dirs);
     idx = malloc((size_t)n * sizeof *idx);
     wis = malloc((size_t)n * sizeof *wis);
@@ -238,7 +243,7 @@ static int wo_samples(cf_ctx *x, cf_wo_data *d)
         r = CF_NOMEM;
         goto out;
     }
-    for (i = 0; i < n; ++i) wos[i] = d->wo;
+    for (i = 0; i < nw; ++i) wos[i] = d->wo;
     cf_sample_numbers(x->c->name, d->index, 0, n, u);
     if ((r = t->ops->sample(t, (int)n, wos, (const float(*)[3])u, s))) goto out;
     for (i = 0; i < n; ++i) {
@@ -445,7 +450,7 @@ static void lobes_energy(const cf_ctx *x, const cf_wo_data *d, double *fwd, doub
         if (x->test->conv.transport == CF_RADIANCE && (b->flags & CF_TRANSMISSION)) {
             double r = b->ratio > 0 ? b->ratio : 0;
             /* eta_i / eta_o, from its own directions or the configuration's */
-            if (r == 0 && x->eta > 0) r = cf_dot(d->wo, x->ng) > 0 ? x->eta : 1 / x->eta;
+            if (r == 0 && x->eta > 0) r = cf_dot(d->wo, x->ns) > 0 ? x->eta : 1 / x->eta;
             conv = r > 0 ? r * r : 1;
         }
         for (k = 0; k < 3; ++k) {
