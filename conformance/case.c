@@ -128,7 +128,7 @@ float cf_u_float(mt_rng *rng)
     return u < 1 ? u : 0x1.fffffep-1f;
 }
 
-void cf_sample_numbers(const char *name, int w, int pilot, long n, float (*u)[3])
+void cf_sample_numbers(const char *name, int w, int pilot, int sample_numbers, long n, float (*u)[3])
 {
     mt_rng rng;
     long i;
@@ -142,6 +142,7 @@ void cf_sample_numbers(const char *name, int w, int pilot, long n, float (*u)[3]
         u[i][0] = cf_u_float(&rng);
         u[i][1] = cf_u_float(&rng);
         u[i][2] = cf_u_float(&rng);
+        if (sample_numbers == 2) u[i][2] = 0.5f;
     }
 }
 

@@ -255,6 +255,7 @@ typedef struct cf_run {
     const char *plots;   /* --plots DIR */
     int plots_all;
     long identity_samples; /* samples per direction whose f and pdf are set against eval */
+    int sample_numbers;  /* the implementation's (3 or 2): with 2, u2 is held at 1/2 */
 } cf_run;
 
 /* The statistical tests of a run over these configurations (Sidak),
@@ -301,8 +302,10 @@ uint64_t cf_seed(const char *name, int k);
 /* A uniform number in [0, 1) as the float a query line carries. */
 float cf_u_float(mt_rng *rng);
 /* The random numbers of the main samples of direction w (n of them), and
- * of the pilot: what --repro writes again. */
-void cf_sample_numbers(const char *name, int w, int pilot, long n, float (*u)[3]);
+ * of the pilot: what --repro writes again. With two sample numbers (the
+ * implementation's convention) u2 is unused, and held at 1/2: an
+ * implementation that declares 2 and uses it shows it. */
+void cf_sample_numbers(const char *name, int w, int pilot, int sample_numbers, long n, float (*u)[3]);
 
 /* Query lines as the protocol writes them. */
 void cf_q_eval(char *q, size_t n, cf_v3 wo, cf_v3 wi);

@@ -93,6 +93,7 @@ static void run_one(pool *p, cfg_out *o)
             cf_outcome mine;
             cf_run quiet = *run;
             quiet.plots = NULL;
+            quiet.sample_numbers = 3; /* materia's own */
             memset(&mine, 0, sizeof mine);
             cf_impl_materia(&self, run->mode);
             self.conv = p->conv;
@@ -139,25 +140,31 @@ static void usage(FILE *f, const char *argv0)
 {
     fprintf(f,
             "usage: %s --impl 'COMMAND' [--mode pbrt-v2|corrected] [--compare materia|none] [--catalog FILE]...\n"
-            "       [--only REGEX] [--check NAME] [--wo K] [--quick] [--samples N] [--cells N] [--significance P]\n"
+            "       [--only REGEX] [--skip REGEX] [--check NAME] [--wo K] [--quick] [--samples N] [--cells N] [--significance P]\n"
             "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS]\n"
             "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR]\n"
             "       %s --impl-inprocess ...   materia itself, in this process, in place of COMMAND\n"
             "Runs the material-level suite through COMMAND (run by sh -c), a program that speaks the\n"
             "query protocol of materia-query on its standard input and output.\n"
-            "  --mode M       pbrt-v2 or corrected (the default)\n"
+            "  --impl COMMAND the implementation (required, or --impl-inprocess)\n"
+            "  --impl-inprocess  materia itself in this process, in place of COMMAND\n"
+            "  --mode M       pbrt-v2 or corrected (corrected, the default: a renderer is compared with the\n"
+            "                 physics; every other tool defaults to pbrt-v2)\n"
             "  --compare C    materia (the default): the agreement checks against materia run too;\n"
             "                 none: the physics checks alone\n"
             "  --catalog F    the configurations of F (docs/CONFORMANCE-SUITE.md gives its format), or\n"
             "                 \"builtin\" for the suite's own; several may be given (default: builtin)\n"
-            "  --only REGEX   the configurations whose name matches (POSIX extended); none is an error\n"
-            "  --check NAME   that check alone (identity, chi2, pdf integral, chi2 materia,\n"
+            "  --only REGEX   the configurations whose name matches (POSIX extended; default: all, or the\n"
+            "                 --quick set); none is an error\n"
+            "  --skip REGEX   leave out the configurations whose name matches (default: none)\n"
+            "  --check NAME   that check alone (default: all): identity, chi2, pdf integral, chi2 materia,\n"
             "                 furnace MC=quad, furnace, agree f, agree pdf, agree delta, reciprocity,\n"
-            "                 helmholtz, extremes)\n"
-            "  --wo K         the K-th incoming direction of each configuration alone (0 first)\n"
+            "                 helmholtz, extremes\n"
+            "  --wo K         the K-th incoming direction of each configuration alone (0 first; default: all)\n"
             "  --significance P  each statistical test at level P (default: 0.01 for the run, Sidak)\n"
-            "  --transport T, --sample-numbers S  the conventions applied, whatever the implementation\n"
-            "                 answers to \"conventions\"\n"
+            "  --transport T  importance or radiance, the transport applied (default: the implementation's\n"
+            "                 answer to \"conventions\", or importance)\n"
+            "  --sample-numbers S  3 or 2, the random numbers' convention (default: its answer, or 3)\n"
             "  --data DIR     where the suite writes the files configurations name (default: a\n"
             "                 temporary directory); they reach COMMAND as absolute paths\n"
             "  --timeout S    seconds allowed for each answer, > 0 and at most 1e6 (default 10)\n"
@@ -165,10 +172,12 @@ static void usage(FILE *f, const char *argv0)
             "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n"
             "  --quick        the reduced set of make check: fewer configurations, directions, samples\n"
             "  --threads N    configurations run at once, 1 to 16 (default: the number of processors)\n"
-            "  --report FILE  the whole result as JSON (schema in docs/CONFORMANCE-SUITE.md)\n"
-            "  --plots DIR    a PNG for every chi-square that fails (with --plots-all: every one)\n"
+            "  --report FILE  the whole result as JSON (schema in docs/CONFORMANCE-SUITE.md; default: none)\n"
+            "  --plots DIR    a PNG for every chi-square that fails (default: none)\n"
+            "  --plots-all    with --plots: a PNG for every chi-square\n"
             "  --repro DIR    for every failure, a file of protocol lines that shows it when piped into\n"
-            "                 COMMAND, and the command that re-runs that check alone\n"
+            "                 COMMAND, and the command that re-runs that check alone (default: none)\n"
+            "  --help         this help; --version materia's version and precision\n"
             "Each option is given once (--catalog as often as needed); a value may not begin with \"--\".\n"
             "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n",
             argv0, argv0);
@@ -176,7 +185,7 @@ static void usage(FILE *f, const char *argv0)
 
 /* The command line of --impl, read. */
 typedef struct opts {
-    const char *command, *mode, *only, *data, *report, *plots, *compare, *check, *repro, *transport, *snum;
+    const char *command, *mode, *only, *data, *report, *plots, *compare, *check, *repro, *transport, *snum, *skip;
     const char *catalogs[MAX_CATALOGS];
     int ncatalogs, quick, plots_all, cells, threads, inprocess, wo;
     long samples;
@@ -206,7 +215,8 @@ static int parse(int argc, char **argv, opts *o)
 {
     static const char *const valued[] = {"--impl", "--mode", "--only", "--data", "--timeout", "--samples", "--cells",
                                          "--threads", "--report", "--plots", "--compare", "--check", "--wo",
-                                         "--significance", "--transport", "--sample-numbers", "--repro", "--catalog"};
+                                         "--significance", "--transport", "--sample-numbers", "--repro", "--catalog",
+                                         "--skip"};
     enum { V_CATALOG = 17 };
     const char *sv[sizeof valued / sizeof valued[0]] = {NULL}; /* their values, in that order */
     size_t k, nv = sizeof valued / sizeof valued[0];
@@ -268,6 +278,7 @@ static int parse(int argc, char **argv, opts *o)
     o->transport = sv[14];
     o->snum = sv[15];
     o->repro = sv[16];
+    o->skip = sv[18];
     if (o->inprocess && o->command) {
         fprintf(stderr, "%s: --impl and --impl-inprocess name two implementations: give one\n", argv[0]);
         return 2;
@@ -545,9 +556,10 @@ int cf_impl_main(int argc, char **argv)
     opts op;
     const char *data;
     int i, nsel = 0, ncase = 0, capcase = 0, threads, t, need_data = 0, declared = 0, fails, status = 2, have_re = 0;
+    int have_skip = 0;
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
     cf_case *cases = NULL;
-    regex_t re;
+    regex_t re, skip_re;
     pool p;
     pthread_t th[16];
     char tmpdir[4096] = "", absdata[4096], impl_name[256] = "materia (in this process)", cv[80];
@@ -575,6 +587,11 @@ int cf_impl_main(int argc, char **argv)
         return 2;
     }
     have_re = op.only != NULL;
+    if (op.skip && regcomp(&skip_re, op.skip, REG_EXTENDED | REG_NOSUB)) {
+        fprintf(stderr, "%s: --skip: \"%s\" is not a regular expression\n", argv[0], op.skip);
+        goto done;
+    }
+    have_skip = op.skip != NULL;
     if (!op.ncatalogs) op.catalogs[op.ncatalogs++] = "builtin";
     /* the configurations, their files' directory named "@DATA@" until the
      * selection is known (a usage error makes no directory) */
@@ -600,7 +617,8 @@ int cf_impl_main(int argc, char **argv)
     if (!p.out) goto done;
     for (i = 0; i < ncase; ++i) {
         int j;
-        if (op.only ? regexec(&re, cases[i].name, 0, NULL, 0) != 0 : op.quick && !(cases[i].flags & CF_CASE_QUICK)) {
+        if ((op.only ? regexec(&re, cases[i].name, 0, NULL, 0) != 0 : op.quick && !(cases[i].flags & CF_CASE_QUICK)) ||
+            (have_skip && !regexec(&skip_re, cases[i].name, 0, NULL, 0))) {
             cf_case_free(&cases[i]);
             continue;
         }
@@ -678,6 +696,7 @@ int cf_impl_main(int argc, char **argv)
     }
     if (op.transport) conv.transport = !strcmp(op.transport, "radiance") ? CF_RADIANCE : CF_IMPORTANCE;
     if (op.snum) conv.sample_numbers = op.snum[0] - '0';
+    run.sample_numbers = conv.sample_numbers;
     run.cfg.samples = op.samples ? op.samples : op.quick ? 8000 : 40000;
     run.cfg.nphi = op.cells ? op.cells : op.quick ? 12 : 20;
     run.cfg.nz = run.cfg.nphi + 1;
@@ -760,6 +779,7 @@ done:
     for (i = 0; p.out && i < p.n; ++i) cf_case_free(&p.out[i].c);
     free(p.out);
     if (have_re) regfree(&re);
+    if (have_skip) regfree(&skip_re);
     if (tmpdir[0]) rm_data(tmpdir);
     return status;
 }

@@ -20,6 +20,7 @@
  */
 #include <errno.h>
 #include <pthread.h>
+#include <regex.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -265,22 +266,29 @@ static void *worker(void *arg)
 static int count_verdicts(const cf_rows *r, cf_verdict v) { return cf_rows_count(r, v, NULL); }
 
 static const char usage_text[] =
-    "usage: materia-conformance [--full | --lite] [--only TEXT] [--threads N] [--ulps OTHER_BINARY]\n"
+    "usage: materia-conformance [--full | --lite] [--only REGEX] [--skip REGEX] [--threads N] [--ulps OTHER_BINARY]\n"
     "       materia-conformance --errata | --dump FILE | --write-data DIR | --help | --version\n"
-    "       materia-conformance --impl 'COMMAND' ... (--impl --help)\n"
+    "       materia-conformance --impl 'COMMAND' ... | --impl-inprocess ... (--impl --help)\n"
     "Runs the physics checks of every BxDF configuration in the catalog, in both modes\n"
     "(docs/CONFORMANCE-SUITE.md).\n"
-    "  --full          40 times the samples and 10 times the cells (slow)\n"
+    "  --full          40 times the samples and 10 times the cells (slow); default: 100000\n"
+    "                  samples per direction, 24 x 25 cells at most\n"
     "  --lite          fewer samples (what the sanitizer builds run)\n"
-    "  --only TEXT     only the configurations whose name contains TEXT (\"pointwise\": the\n"
-    "                  pair-by-pair checks alone); an error when none does\n"
+    "  --only REGEX    only the configurations whose name matches REGEX, a POSIX extended\n"
+    "                  regular expression (default: all; \"pointwise\": the checks that are not\n"
+    "                  per configuration alone); an error when none does\n"
+    "  --skip REGEX    leave out the configurations whose name matches REGEX (default: none)\n"
     "  --threads N     worker threads, 1 to 16 (default: the processors online)\n"
-    "  --ulps OTHER    compare with the other precision's materia-conformance\n"
+    "  --ulps OTHER    compare with the other precision's materia-conformance (default: not)\n"
     "  --errata        the measured size of each pbrt-v2 erratum\n"
     "  --write-data DIR  writes the files the --impl catalog and vectors/ name as @DATA@ (two\n"
     "                  spectra and a MERL table) into DIR\n"
     "  --dump FILE     the values the float/double comparison reads\n"
-    "Exit status 0 all passed, 1 a check failed, 2 wrong command line.\n";
+    "  --impl COMMAND  another implementation through the query protocol (--impl --help)\n"
+    "  --impl-inprocess  materia itself in this process, as --impl runs it (--impl --help)\n"
+    "  --help          this help\n"
+    "  --version       materia's version and precision\n"
+    "Exit status: 0 all passed, 1 a check failed, 2 wrong command line.\n";
 
 int main(int argc, char **argv)
 {
@@ -288,7 +296,9 @@ int main(int argc, char **argv)
     int nsub, nbroken, nmat, i, t, nthreads, full = 0, threads;
     const cf_subject *subs = cf_subjects(&nsub), *brk = cf_broken_subjects(&nbroken), *mats = cf_material_subjects(&nmat);
     const cf_subject **sel;
-    const char *only = NULL;
+    const char *only = NULL, *skip = NULL;
+    regex_t only_re, skip_re;
+    int have_only = 0, have_skip = 0;
     pool p;
     pthread_t th[16];
     cf_rows extra = {0, 0, 0};
@@ -316,6 +326,8 @@ int main(int argc, char **argv)
             full = -1;
         else if (!strcmp(argv[i], "--only") && i + 1 < argc)
             only = argv[++i];
+        else if (!strcmp(argv[i], "--skip") && i + 1 < argc)
+            skip = argv[++i];
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc) {
             char *end;
             long n = strtol(argv[++i], &end, 10);
@@ -342,6 +354,18 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    /* --only and --skip: POSIX extended regular expressions, as everywhere */
+    if (only && strcmp(only, "pointwise") && regcomp(&only_re, only, REG_EXTENDED | REG_NOSUB)) {
+        fprintf(stderr, "materia-conformance: --only: \"%s\" is not a regular expression\n", only);
+        return 2;
+    }
+    have_only = only && strcmp(only, "pointwise");
+    if (skip && regcomp(&skip_re, skip, REG_EXTENDED | REG_NOSUB)) {
+        fprintf(stderr, "materia-conformance: --skip: \"%s\" is not a regular expression\n", skip);
+        if (have_only) regfree(&only_re);
+        return 2;
+    }
+    have_skip = skip != NULL;
     cf_suite_settings(&run, full);
     run.cfg.only = only;
     run.cfg.threads = threads;
@@ -351,10 +375,14 @@ int main(int argc, char **argv)
     p.njobs = 0;
     for (i = 0; i < nsub + nmat + nbroken; ++i) {
         const cf_subject *s = i < nsub ? &subs[i] : i < nsub + nmat ? &mats[i - nsub] : &brk[i - nsub - nmat];
-        if (only && !strstr(s->name, only)) continue;
+        if ((only && (!have_only || regexec(&only_re, s->name, 0, NULL, 0))) ||
+            (have_skip && !regexec(&skip_re, s->name, 0, NULL, 0)))
+            continue;
         sel[p.njobs] = s;
         p.jobs[p.njobs++].s = s;
     }
+    if (have_only) regfree(&only_re);
+    if (have_skip) regfree(&skip_re);
     if (only && p.njobs == 0 && strcmp(only, "pointwise") != 0) {
         fprintf(stderr, "materia-conformance: --only \"%s\" selects no configuration\n", only);
         free(p.jobs);

@@ -218,7 +218,7 @@ int cf_pairs(cf_ctx *x)
         if (et[i].pdf != 0 || et[i].f[0] != 0 || et[i].f[1] != 0 || et[i].f[2] != 0) x->density = 1;
     }
     /* reciprocity: the ratio across the surface */
-    rrel = x->allow;
+    rrel = x->allow_own;
     if (eta_known) {
         /* f(a, b) = kappa f(b, a) for a outside: importance eta^2, radiance 1 / eta^2 */
         kappa = radiance ? 1 / (x->eta * x->eta) : x->eta * x->eta;
@@ -289,7 +289,7 @@ int cf_pairs(cf_ctx *x)
     }
     /* agreement with materia */
     if (ref) {
-        double rel = x->allow / t->eps * FLT_EPSILON; /* (64 + 3 e) float epsilons */
+        double rel = x->allow_own / t->eps * FLT_EPSILON; /* (64 + 3 e) float epsilons */
         ref->ops->eval(ref, 2 * m, a, b, er);
         tilt = frame_tilt(c, ref->bsdf);
         for (i = 0; i < 2 * m; ++i) {

@@ -48,7 +48,9 @@ typedef struct cf_ctx {
     const cf_outcome *fixed;
     unsigned stages;
     cf_v3 ns, ng;       /* the shading and geometric normals of its "at" lines */
-    double allow;       /* rounding allowance of its values: (64 + 3 e) eps */
+    double allow;       /* rounding allowance of an integral of its values: (64 + 3 e) eps,
+                           eps at least a float's (the suite's directions are floats) */
+    double allow_own;   /* of one of its values against another at the same inputs: its eps */
     double z;           /* the two-sided z of the run's per-test level */
     int nwo;
     cf_wo_data *w;

@@ -101,7 +101,7 @@ int cf_repro_write(const cf_repro *rp, const cf_run *run, const cf_case *c, cons
                 snprintf(msg, nm, "out of memory");
                 return -1;
             }
-            cf_sample_numbers(c->name, w, 0, n, u);
+            cf_sample_numbers(c->name, w, 0, run->sample_numbers, n, u);
             fprintf(f, "# the %ld samples of that direction: their histogram against the integral of the pdf over\n"
                        "# the cells named above is the test\n",
                     n);
