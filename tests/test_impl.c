@@ -178,6 +178,14 @@ int main(int argc, char **argv)
             printf("PASS impl: impl-other compared with materia fails no physics row\n");
         }
         free(out);
+        /* materia (three numbers: u2 drives its glossy lobes) said to take two:
+         * with u2 held at 1/2 its samples collapse */
+        snprintf(args, sizeof args, "--impl '%s/materia-query' --compare none --quick --sample-numbers 2 --only '^plastic default$' --threads 2",
+                 bin);
+        {
+            static const char *const two[] = {"FAIL|plastic default|chi2  |physics", NULL};
+            expect("materia-query declared with two sample numbers fails chi2", args, 1, two);
+        }
         /* its transport declared wrong: physics sees it */
         snprintf(args, sizeof args, "--impl '%.1000s/impl-other' --compare none --quick --transport importance --only '^glass default$' --threads 2",
                  tests_dir);
