@@ -6,7 +6,7 @@
  * it pass, the row is an expected failure (XFAIL) naming the erratum and the
  * measured deviation; otherwise it is a failure.
  *
- *   materia-conformance [--full] [--only TEXT] [--threads N]
+ *   materia-conformance [--full | --lite] [--only REGEX] [--skip REGEX] [--threads N]
  *   materia-conformance --errata             the measured size of each erratum
  *   materia-conformance --dump FILE          values for the float/double comparison
  *   materia-conformance --ulps OTHER_BINARY  compare with the other precision
@@ -271,9 +271,9 @@ static const char usage_text[] =
     "       materia-conformance --impl 'COMMAND' ... | --impl-inprocess ... (--impl --help)\n"
     "Runs the physics checks of every BxDF configuration in the catalog, in both modes\n"
     "(docs/CONFORMANCE-SUITE.md).\n"
-    "  --full          40 times the samples and 10 times the cells (slow); default: 100000\n"
-    "                  samples per direction, 24 x 25 cells at most\n"
-    "  --lite          fewer samples (what the sanitizer builds run; default: not)\n"
+    "  --full          4000000 samples per direction, 100 x 101 cells at most (slow); default:\n"
+    "                  100000 samples, 24 x 25 cells\n"
+    "  --lite          20000 samples, 16 x 17 cells (what the sanitizer builds run; default: not)\n"
     "  --only REGEX    only the configurations whose name matches REGEX, a POSIX extended\n"
     "                  regular expression (default: all; \"pointwise\": the checks that are not\n"
     "                  per configuration alone); an error when none does\n"
