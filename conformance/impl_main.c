@@ -113,7 +113,8 @@ static void run_one(pool *p, cfg_out *o)
         if (cf_repro_write(p->repro, run, &o->c, &o->o, o->repro, msg, sizeof msg))
             fprintf(stderr, "materia-conformance: --repro: %s\n", msg);
     }
-    cf_results_free(o->o.res);
+    /* the measures and the cells; the verdicts and notes stay for the report */
+    cf_outcome_free(&o->o);
 }
 
 static void *worker(void *arg)

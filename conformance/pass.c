@@ -49,7 +49,10 @@
 /* |wi| - 1: a direction normalized in float, or printed with 9 digits
  * whatever the precision it was computed in, is within a few float
  * epsilons (1e-5 is 84); one computed in double and received as it is (in
- * this process), within 64 double epsilons */
+ * this process), within 64 double epsilons of the length of the wo it came
+ * from: the suite's wo is a float direction, unit to a float epsilon only,
+ * and a reflection about a half vector keeps its length (pbrt-v2's
+ * microfacet sampling does) */
 #define UNIT_TOL_FLOAT 1e-5
 #define UNIT_TOL_DOUBLE (64 * DBL_EPSILON)
 /* pilot samples per cell at least: the layout's quantiles need a few per
@@ -222,7 +225,8 @@ static int wo_samples(cf_ctx *x, cf_wo_data *d)
     cf_samp *s = NULL;
     cf_v3 *wos = NULL, *wis = NULL;
     cf_eval *ev = NULL;
-    double unit_tol = t->eps < 1e-10 && t->direct ? UNIT_TOL_DOUBLE : UNIT_TOL_FLOAT;
+    double unit_tol = t->eps < 1e-10 && t->direct ? UNIT_TOL_DOUBLE + 4 * fabs(sqrt(cf_dot(d->wo, d->wo)) - 1)
+                                                   : UNIT_TOL_FLOAT;
     double id_tol = fmax(t->eps < 1e-10 ? IDENTITY_REL_DOUBLE : IDENTITY_REL_FLOAT, x->allow_own);
     cf_result *res = x->out->res;
     char q[200], an[240], ex[400], qs[200];

@@ -325,6 +325,65 @@ static void test_degenerate(void)
         mt_geometry_destroy(g);
     }
 
+    /* pbrt-v2's 568b432: a range of more than 255 primitives whose centroids
+     * coincide became one leaf, whose 8-bit count wrapped (primitives
+     * lost). 300 triangles through one centroid, each in its own vertical
+     * plane about the z axis, and 300 concentric spheres: each is found by
+     * a ray that meets it first. */
+    {
+        int n = 300, *idx = malloc(3 * (size_t)n * sizeof *idx), lost = 0, k;
+        mt_vec3 *P = malloc(3 * (size_t)n * sizeof *P);
+        mt_transform id = mt_transform_identity();
+        mt_bvh_stats st;
+        for (k = 0; k < n; ++k) {
+            /* a = (u, 1), b = (u, -1), c = (-2u, 0), u at azimuth pi k / n:
+             * centroid (0, 0, 0) */
+            double ph = MT_PI * k / n;
+            mt_vec3 u = mt_v3((mt_real)cos(ph), (mt_real)sin(ph), 0);
+            P[3 * k] = mt_v3(u.x, u.y, 1);
+            P[3 * k + 1] = mt_v3(u.x, u.y, -1);
+            P[3 * k + 2] = mt_v3(-2 * u.x, -2 * u.y, 0);
+            idx[3 * k] = 3 * k, idx[3 * k + 1] = 3 * k + 1, idx[3 * k + 2] = 3 * k + 2;
+        }
+        g = mt_geometry_create();
+        s = mt_shape_create_mesh(&id, 0, n, idx, 3 * n, P, NULL, NULL, NULL, NULL, &err);
+        ok = g && s && mt_geometry_attach(g, s, &err) == MT_OK && mt_geometry_commit(g, &err) == MT_OK;
+        for (k = 0; ok && k < n; ++k) {
+            /* from 1e-3 in front of the triangle's plane near its edge ab
+             * (the planes are 0.01 apart there), towards it */
+            double ph = MT_PI * k / n;
+            mt_vec3 nk = mt_v3((mt_real)-sin(ph), (mt_real)cos(ph), 0);
+            mt_vec3 q = mt_v3((mt_real)(0.95 * cos(ph)), (mt_real)(0.95 * sin(ph)), 0.3f);
+            r = mt_ray_make(mt_v3_add(q, mt_v3_scale(nk, 1e-3f)), mt_v3_neg(nk), 0, MT_RAY_TMAX);
+            if (!mt_geometry_intersect(g, &r, &h) || h.id != (uint32_t)k) lost++;
+        }
+        if (ok) mt_geometry_stats(g, &st);
+        t_check(ok && lost == 0 && st.max_leaf_prims <= 8,
+                "300 triangles with one centroid: every one found (pbrt-v2 568b432)",
+                "%d lost, leaves of up to %u", lost, ok ? (unsigned)st.max_leaf_prims : 0);
+        mt_geometry_destroy(g);
+        free(idx);
+        free(P);
+
+        g = mt_geometry_create();
+        ok = g != NULL;
+        for (k = 0; ok && k < n; ++k) {
+            char text[80];
+            snprintf(text, sizeof text, "Shape \"sphere\" \"float radius\" [%g]", 1 + 0.01 * k);
+            s = t_shape(text, NULL, 0, NULL, &err);
+            ok = s && mt_geometry_attach(g, s, &err) == MT_OK;
+        }
+        ok = ok && mt_geometry_commit(g, &err) == MT_OK;
+        for (lost = 0, k = 0; ok && k < n; ++k) {
+            /* outwards from just inside sphere k */
+            r = mt_ray_make(mt_v3(0, 0, (mt_real)(1 + 0.01 * k - 0.004)), mt_v3(0, 0, 1), 0, MT_RAY_TMAX);
+            if (!mt_geometry_intersect(g, &r, &h) || mt_fabs(h.t - 0.004f) > 1e-4f) lost++;
+        }
+        t_check(ok && lost == 0, "300 concentric spheres: every one found (pbrt-v2 568b432)",
+                "%d lost: %s", lost, err.message);
+        mt_geometry_destroy(g);
+    }
+
     /* rays with zero direction components through an axis-aligned grid of
      * triangles, starting exactly on box planes */
     g = from_text("Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3 4 5 6 4 6 7] "

@@ -428,6 +428,26 @@ static void test_points_file(void)
     }
     mt_scene_destroy(s);
     {
+        /* a relative name is the scene file's neighbour, whatever the
+         * current directory (pbrt-v2 as released reads it with
+         * FindOneFilename, d9f2b75; the 2012 source from the current
+         * directory) */
+        char rel[4096], scene_path[512];
+        snprintf(rel, sizeof rel, "%s", scene_text((mt_real)0.1, "\"string pointsfile\" \"pts.txt\""));
+        snprintf(scene_path, sizeof scene_path, "%s", t_write_file("scene.pbrt", rel, strlen(rel)));
+        mt_render_options_default(&o);
+        o.spp = 1;
+        s = mt_scene_load(scene_path, &o, &err);
+        if (!s || mt_scene_render(s, &o, &img, NULL, &st, &err) != MT_OK) {
+            t_fail("points file: a relative name is found beside the scene file (d9f2b75)", "%s", err.message);
+        } else {
+            t_check(st.points == 3, "points file: a relative name is found beside the scene file (d9f2b75)",
+                    "%ld points", st.points);
+            mt_image_free(&img);
+        }
+        mt_scene_destroy(s);
+    }
+    {
         static const struct {
             const char *content;
             int line;

@@ -22,6 +22,7 @@
 #include "support/tgeom.h"
 #include "support/trender.h"
 #include "tracer/scene.h"
+#include "tracer/shading.h"
 
 #define PI_D 3.14159265358979323846
 #define DIR_TOL 2e-5
@@ -197,7 +198,7 @@ static void test_cameras(void)
     }
 }
 
-/* ---- erratum thin-lens-differentials ------------------------------------------ */
+/* ---- lens differentials (88cdb51) and erratum ortho-lens ------------------------------ */
 
 static mt_scene *scene_in_mode(const char *check, const char *text, mt_mode mode)
 {
@@ -256,15 +257,71 @@ static void lens_footprints(const mt_scene *s, double *worst, double *lo, double
     }
 }
 
+/* The orthographic lens camera of pbrt-v2 (50 x 50 pixels, screen [-1, 1]^2,
+ * lensradius 0.2, focaldistance 3, camera = world): over 200 samples, *dev
+ * receives the largest distance of the x differential from pbrt-v2's
+ * construction -- from the main ray's origin towards Pcamera + dxCamera at
+ * depth focalDistance / d.z, with Pcamera read off the main ray at the plane
+ * of focus -- and *shift the largest |mean lateral position at depth 2
+ * focalDistance - 2 Pcamera| over 64 lens points of one pixel (pbrt-v2's
+ * projection from the origin draws depth z at Pcamera z / focalDistance). */
+static void ortho_lens_rays(const mt_scene *s, double *dev, double *shift_pbrt, double *shift_ortho)
+{
+    mt_rng r;
+    int i, j;
+    *dev = 0, *shift_pbrt = 0, *shift_ortho = 0;
+    mt_rng_seed(&r, 9, 4);
+    for (i = 0; i < 200; ++i) {
+        mt__camera_sample cs;
+        mt_raydiff a;
+        d3 pf, q;
+        double ft, t;
+        cs.image_x = (mt_real)(50 * mt_rng_uniform(&r));
+        cs.image_y = (mt_real)(50 * mt_rng_uniform(&r));
+        cs.lens_u = mt_rng_uniform(&r);
+        cs.lens_v = mt_rng_uniform(&r);
+        mt__camera_ray(&s->camera, &cs, &a);
+        pf = at_depth(a.ray.o, a.ray.d, 3);
+        ft = 3 / ((double)a.ray.d.z / sqrt((double)mt_v3_len2(a.ray.d)));
+        q = D3(pf.x + 0.04, pf.y, ft);
+        /* the distance of q from the line of the x differential */
+        t = ((q.x - a.rx_o.x) * a.rx_d.x + (q.y - a.rx_o.y) * a.rx_d.y + (q.z - a.rx_o.z) * a.rx_d.z) /
+            mt_v3_len2(a.rx_d);
+        *dev = fmax(*dev, d3_dist(q, D3(a.rx_o.x + t * a.rx_d.x, a.rx_o.y + t * a.rx_d.y,
+                                        a.rx_o.z + t * a.rx_d.z)) +
+                              vdist(a.rx_o, D3(a.ray.o.x, a.ray.o.y, a.ray.o.z)));
+    }
+    for (i = 0; i < 20; ++i) {
+        mt__camera_sample cs;
+        double mx = 0, my = 0, px = 0, py = 0;
+        cs.image_x = (mt_real)(50 * mt_rng_uniform(&r));
+        cs.image_y = (mt_real)(50 * mt_rng_uniform(&r));
+        for (j = 0; j < 64; ++j) {
+            mt_raydiff a;
+            d3 p6, p3;
+            /* a stratified lens: the mean offset is 0 to within the strata */
+            cs.lens_u = (mt_real)((j % 8 + 0.5) / 8);
+            cs.lens_v = (mt_real)((j / 8 + 0.5) / 8);
+            mt__camera_ray(&s->camera, &cs, &a);
+            p6 = at_depth(a.ray.o, a.ray.d, 6);
+            p3 = at_depth(a.ray.o, a.ray.d, 3);
+            mx += p6.x / 64, my += p6.y / 64, px = p3.x, py = p3.y;
+        }
+        *shift_pbrt = fmax(*shift_pbrt, fmax(fabs(mx - 2 * px), fabs(my - 2 * py)));
+        *shift_ortho = fmax(*shift_ortho, fmax(fabs(mx - px), fabs(my - py)));
+    }
+}
+
 static void test_lens_differentials(void)
 {
     static const char *const cam[2] = {"perspective\" \"float fov\" [40]", "orthographic\""};
     int c, m;
     for (c = 0; c < 2; ++c)
         for (m = 0; m < 3; ++m) {
-            /* m: pbrt-v2 mode, the bit alone, corrected mode */
-            mt_mode mode = m == 0 ? MT_MODE_PBRT_V2 : m == 1 ? MT_FIX_THIN_LENS_DIFFERENTIALS : MT_MODE_CORRECTED;
-            char text[512], name[200];
+            /* m: pbrt-v2 mode, the erratum's bit alone, corrected mode */
+            mt_mode mode = m == 0 ? MT_MODE_PBRT_V2 : m == 1 ? MT_FIX_ORTHO_LENS : MT_MODE_CORRECTED;
+            const char *mname = m == 0 ? "pbrt-v2 mode" : m == 1 ? "ortho-lens fixed" : "corrected mode";
+            char text[512], name[256];
             double worst, lo, hi;
             mt_scene *s;
             snprintf(text, sizeof text,
@@ -273,27 +330,48 @@ static void test_lens_differentials(void)
                      "WorldBegin WorldEnd\n", cam[c]);
             snprintf(name, sizeof name, "camera %s thin lens (%s): x differential = the next pixel's ray "
                      "through the same lens point, at depths 0.5, 1 and 2 times focaldistance",
-                     c ? "orthographic" : "perspective",
-                     m == 0 ? "pbrt-v2 mode" : m == 1 ? "thin-lens-differentials fixed" : "corrected mode");
+                     c ? "orthographic" : "perspective", mname);
             if (!(s = scene_in_mode(name, text, mode))) continue;
             lens_footprints(s, &worst, &lo, &hi);
             /* the two rays differ only by the rounding of pc + dx against
              * p00 + (x + 1) dx: about 1e-7 of |pc| (about 1) against a
-             * footprint of at least 0.02 */
-            if (m == 0 && worst > 1e-3)
-                t_xfail(name, "erratum thin-lens-differentials: the footprint is %.3g to %.3g times the "
+             * footprint of at least 0.02. pbrt-v2's 2012 snapshot (the
+             * lensless camera's differentials) gave 0.16 to 5.4 times the
+             * footprint here. */
+            if (c == 1 && m == 0 && worst > 1e-3)
+                t_xfail(name, "erratum ortho-lens: the footprint is %.3g to %.3g times the "
                         "finite difference's (its vector off by up to %.3g of it)", lo, hi, worst);
             else
-                t_check(worst < 1e-3 && m > 0, name, "footprint vector off by up to %.3g of the finite "
+                t_check(worst < 1e-3, name, "footprint vector off by up to %.3g of the finite "
                         "difference's; length ratio %.3g to %.3g", worst, lo, hi);
+            if (c == 1) {
+                double dev, sp, so;
+                ortho_lens_rays(s, &dev, &sp, &so);
+                if (m == 0) {
+                    t_check(dev < 1e-5, "camera orthographic thin lens (pbrt-v2 mode): the x "
+                            "differential leaves the lens point towards Pcamera + dxCamera at depth "
+                            "focaldistance / d.z (88cdb51)", "off by %.3g", dev);
+                    t_check(sp < 1e-3 && so > 0.1, "camera orthographic thin lens (pbrt-v2 mode): "
+                            "depth 2 focaldistance is drawn at twice its orthographic position",
+                            "mean position off by %.3g (%.3g from the orthographic one)", sp, so);
+                    t_xfail("camera orthographic thin lens: depth 2 focaldistance drawn at its "
+                            "orthographic position", "erratum ortho-lens: off by up to %.3g "
+                            "(screen half-width 1)", so);
+                } else {
+                    snprintf(name, sizeof name, "camera orthographic thin lens (%s): depth 2 "
+                             "focaldistance drawn at its orthographic position", mname);
+                    t_check(so < 1e-3, name, "mean position off by %.3g", so);
+                }
+            }
             mt_scene_destroy(s);
         }
 }
 
 /* A checkerboard (closed-form filtering) on a plane at the plane of focus,
  * seen through a lens of radius 0.3: every lens ray meets the pinhole's at
- * the plane, so the image is the pinhole camera's; the footprint of pbrt-v2's
- * differentials (the lens offset) blurs the checks. */
+ * the plane, so the image is the pinhole camera's, in both modes since the
+ * release's 88cdb51 (the 2012 snapshot's differentials, the lensless
+ * camera's, gave a footprint of the lens offset and blurred the checks). */
 static const char *const focus_scene =
     "Camera \"perspective\" \"float fov\" [40] \"float lensradius\" [%g] \"float focaldistance\" [3]\n"
     "Film \"image\" \"integer xresolution\" [32] \"integer yresolution\" [32]\n"
@@ -343,23 +421,113 @@ static void test_lens_texture_filtering(void)
     sd = sqrt(sd);
     rms[0] = image_rms(&img[1], &img[0]);
     rms[1] = image_rms(&img[3], &img[2]);
-    /* corrected: the lens rays and their differentials meet the pinhole's on
-     * the plane, so the same texture lookups; but the renderer scales the
+    /* the lens rays and their differentials meet the pinhole's on the plane,
+     * so the same texture lookups; but the renderer scales the
      * differentials by 1/sqrt(spp) as directions (d + (rx_d - d) / 2), which
      * meet the plane at slightly different points from a lens point than
      * from the pinhole: footprints differ by about 1e-4 of theirs (measured:
-     * RMS 5.1e-5, 1.6e-4 of the standard deviation, in float) */
-    t_check(rms[1] < 1e-3 * sd, "camera thin lens, plane in focus (corrected mode): the pinhole's image",
-            "RMS difference %.3g (image standard deviation %.3g)", rms[1], sd);
-    if (rms[0] > 0.1 * sd)
-        t_xfail("camera thin lens, plane in focus (pbrt-v2 mode): the pinhole's image",
-                "erratum thin-lens-differentials: RMS difference %.3g, %.0f%% of the image's standard "
-                "deviation %.3g (the checks blurred by the lens offset's footprint)", rms[0], 100 * rms[0] / sd, sd);
-    else
-        t_fail("camera thin lens, plane in focus (pbrt-v2 mode): the pinhole's image",
-               "pbrt-v2's differentials should blur the checks: RMS difference %.3g, standard deviation %.3g",
-               rms[0], sd);
+     * RMS 5.1e-5, 1.6e-4 of the standard deviation, in float). pbrt-v2's
+     * 2012 snapshot, with the lensless camera's differentials, blurred the
+     * checks: RMS 0.175, 53% of the standard deviation. */
+    for (k = 0; k < 2; ++k)
+        t_check(rms[k] < 1e-3 * sd, k ? "camera thin lens, plane in focus (corrected mode): the pinhole's image"
+                                      : "camera thin lens, plane in focus (pbrt-v2 mode): the pinhole's image",
+                "RMS difference %.3g (image standard deviation %.3g)", rms[k], sd);
     for (k = 0; k < 4; ++k) mt_image_free(&img[k]);
+}
+
+/* ---- specular ray differentials (core/integrator.cpp) ---------------------------- */
+
+static d3 dv3(mt_vec3 v) { return D3(v.x, v.y, v.z); }
+static mt_vec3 rv(d3 a) { return mt_v3((mt_real)a.x, (mt_real)a.y, (mt_real)a.z); }
+static double d3_dot(d3 a, d3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static d3 d3_lin(d3 a, double s, d3 b) { return D3(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z); }
+
+/* The specular direction of the unit incident direction w at unit normal n
+ * (double): the mirror direction, or Snell's refraction into glass of index
+ * 1.5 (entering against n); 0 with total internal reflection. */
+static int specular_dir(d3 w, d3 n, int transmit, d3 *out)
+{
+    double c, e, s2;
+    if (!transmit) {
+        *out = d3_lin(w, -2 * d3_dot(w, n), n);
+        return 1;
+    }
+    if (d3_dot(w, n) > 0) n = D3(-n.x, -n.y, -n.z), e = 1.5;
+    else e = 1 / 1.5;
+    c = -d3_dot(w, n);
+    s2 = e * e * (1 - c * c);
+    if (s2 >= 1) return 0;
+    *out = d3_lin(D3(e * w.x, e * w.y, e * w.z), e * c - sqrt(1 - s2), n);
+    return 1;
+}
+
+/* A ray with differentials (the neighbours 1e-3 away in origin and
+ * direction) meets a unit glass sphere; the differentials of its reflected
+ * and refracted rays (mt__specular_differentials, pbrt-v2's formulas) against
+ * the neighbours' own reflected and refracted directions at their own hits:
+ * first order, so within a few 1e-3 of the difference. pbrt-v2's 2012
+ * SpecularTransmit (before e6f6334) took wo's signs and the inverted eta. */
+static void test_specular_differentials(void)
+{
+    static const double rays[2][6] = {
+        {0.3, 0.2, 5, -0.05, 0.02, -1}, /* from outside, entering */
+        {0.1, -0.2, 0.1, 0.2, 0.1, 1},  /* from inside, leaving */
+    };
+    mt_error err;
+    mt_shape *s = t_shape("Shape \"sphere\"", NULL, 0, NULL, &err);
+    int c, k;
+    if (!s) {
+        t_fail("specular differentials", "%s", err.message);
+        return;
+    }
+    for (c = 0; c < 2; ++c)
+        for (k = 0; k < 2; ++k) {
+            const double eps = 1e-3;
+            d3 o = D3(rays[c][0], rays[c][1], rays[c][2]);
+            d3 d = d3_norm(D3(rays[c][3], rays[c][4], rays[c][5]));
+            d3 ox = d3_lin(o, eps, D3(1, 0, 0)), dx = d3_norm(d3_lin(d, eps, D3(0, 1, 0.5)));
+            d3 oy = d3_lin(o, eps, D3(0, 0.6, 0.8)), dy = d3_norm(d3_lin(d, -eps, D3(1, 0, 0)));
+            d3 wi, wix, wiy;
+            mt_raydiff rd, next;
+            mt_ray r;
+            mt_hit h;
+            mt_surface sf, sx, sy;
+            char name[160];
+            double ex, ey, lx, ly;
+            int ok;
+            rd.ray = mt_ray_make(rv(o), rv(d), 0, MT_RAY_TMAX);
+            rd.has_differentials = 1;
+            rd.rx_o = rv(ox), rd.rx_d = rv(dx), rd.ry_o = rv(oy), rd.ry_d = rv(dy);
+            ok = mt_shape_intersect(s, 0, &rd.ray, &h);
+            if (ok) mt_hit_surface(&h, &rd.ray, &sf);
+            r = mt_ray_make(rv(ox), rv(dx), 0, MT_RAY_TMAX);
+            ok = ok && mt_shape_intersect(s, 0, &r, &h);
+            if (ok) mt_hit_surface(&h, &r, &sx);
+            r = mt_ray_make(rv(oy), rv(dy), 0, MT_RAY_TMAX);
+            ok = ok && mt_shape_intersect(s, 0, &r, &h);
+            if (ok) mt_hit_surface(&h, &r, &sy);
+            ok = ok && specular_dir(d, dv3(sf.dg.n), k, &wi) && specular_dir(dx, dv3(sx.dg.n), k, &wix) &&
+                 specular_dir(dy, dv3(sy.dg.n), k, &wiy);
+            snprintf(name, sizeof name, "specular differentials: %s ray %s the sphere, x and y "
+                     "neighbours' %s directions", k ? "refracted (SpecularTransmit, e6f6334)" : "reflected",
+                     c ? "leaving" : "entering", k ? "refracted" : "reflected");
+            if (!ok) {
+                t_fail(name, "a ray missed or was totally reflected");
+                continue;
+            }
+            mt_surface_differentials(&sf, &rd);
+            next = mt_raydiff_from_ray(&rd.ray);
+            mt__specular_differentials(&rd, &sf.dg, &sf.dg, sf.dg.p, sf.dg.n, rv(D3(-d.x, -d.y, -d.z)),
+                                       rv(wi), k, (mt_real)1.5, &next);
+            lx = d3_dist(wix, wi);
+            ly = d3_dist(wiy, wi);
+            ex = d3_dist(d3_lin(dv3(next.rx_d), -1, wi), d3_lin(wix, -1, wi)) / lx;
+            ey = d3_dist(d3_lin(dv3(next.ry_d), -1, wi), d3_lin(wiy, -1, wi)) / ly;
+            t_check(next.has_differentials && ex < 1e-2 && ey < 1e-2 && lx > 0.1 * eps && ly > 0.1 * eps, name,
+                    "off by %.3g and %.3g of the neighbours' change (%.3g, %.3g)", ex, ey, lx, ly);
+        }
+    mt_shape_destroy(s);
 }
 
 /* ---- filters and film ---------------------------------------------------------- */
@@ -541,6 +709,43 @@ static void test_crop_window(void)
     }
     mt_image_free(&full);
     mt_scene_destroy(s);
+    {
+        /* the sample extent: pbrt-v2's GetSampleExtent as released (77bcd78,
+         * 3f43c45), floor(x0 + 0.5 - w) to ceil(x0 + width - 0.5 + w)
+         * exclusive -- the 2012 source's floor(x0 + 0.5 + width + w) added a
+         * column of samples that reach no pixel; and no pixel of the window
+         * misses a sample position that reaches it (sample positions on a
+         * grid of 1/64 pixel) */
+        static const double widths[] = {0.5, 1, 1.25, 1.5, 2, 4};
+        static const mt_real crops[2][4] = {{0, 1, 0, 1}, {0.25, 0.75, 0.1, 0.6}};
+        int bad = 0, k, c;
+        for (k = 0; k < 6; ++k)
+            for (c = 0; c < 2; ++c) {
+                mt__film f;
+                mt__filter flt;
+                double xw = widths[k];
+                int lo, hi, i;
+                memset(&flt, 0, sizeof flt);
+                flt.kind = MT__FILTER_TRIANGLE;
+                flt.xwidth = flt.ywidth = (mt_real)xw;
+                mt__film_init(&f, 32, 24, crops[c], &flt);
+                if (f.sx0 != (int)floor(f.x0 + 0.5 - xw) || f.sx1 != (int)ceil(f.x0 + f.width - 0.5 + xw) ||
+                    f.sy0 != (int)floor(f.y0 + 0.5 - xw) || f.sy1 != (int)ceil(f.y0 + f.height - 0.5 + xw))
+                    bad++;
+                /* the samples that reach pixels x0 .. x0 + width - 1 along x */
+                lo = 1 << 30, hi = -(1 << 30);
+                for (i = -64 * 8; i < 64 * 48; ++i) {
+                    double ix = (i + 0.5) / 64.0; /* never on a pixel edge: those reach at single points */
+                    if (ceil(ix - 0.5 - xw) <= f.x0 + f.width - 1 && floor(ix - 0.5 + xw) >= f.x0) {
+                        lo = (int)fmin(lo, floor(ix));
+                        hi = (int)fmax(hi, floor(ix) + 1);
+                    }
+                }
+                if (lo < f.sx0 || hi > f.sx1 || f.sx1 - hi > 0) bad++;
+            }
+        t_check(bad == 0, "film sample extent: pbrt-v2's GetSampleExtent as released (3f43c45), "
+                "exactly the pixels whose samples reach the window", "%d bad", bad);
+    }
 }
 
 /* ---- sampler --------------------------------------------------------------------- */
@@ -791,6 +996,14 @@ typedef struct light_case {
     mt_real p[3];
     mt_mode bit;
     int hidden;
+    /* bits set in all three runs: disk-partials for disks, whose hits in
+     * pbrt-v2 mode face the other way than their samples (measured by a
+     * case of its own), so that the reference (the side rays see) is the
+     * side the samples emit to */
+    mt_mode base;
+    /* when hi > 0: the range pbrt-v2 mode's ratio must fall in (the
+     * release's size of the erratum, not another version's) */
+    double lo, hi;
 } light_case;
 
 static mt_transform placed(const double a[6])
@@ -813,8 +1026,8 @@ static void check_light_erratum(const light_case *c)
     mt_vec3 p = mt_v3(c->p[0], c->p[1], c->p[2]);
     char nm[200];
     int m;
-    modes[0] = MT_MODE_PBRT_V2;
-    modes[1] = c->bit;
+    modes[0] = MT_MODE_PBRT_V2 | c->base;
+    modes[1] = c->bit | c->base;
     modes[2] = MT_MODE_CORRECTED;
     for (m = 0; m < 3; ++m) {
         mt_error err;
@@ -834,9 +1047,11 @@ static void check_light_erratum(const light_case *c)
             t_check(estimate_agrees(&est, &ref), nm, "%.5g +- %.2g against %.5g +- %.2g",
                     acc_mean(&est), acc_se(&est), acc_mean(&ref), acc_se(&ref));
         } else if (m == 0) {
+            double ratio = acc_mean(&est) / acc_mean(&ref);
             snprintf(nm, sizeof nm, "light %s: pbrt-v2's bias reproduced", c->what);
-            t_check(!estimate_agrees(&est, &ref), nm, "%.5g +- %.2g against %.5g +- %.2g",
-                    acc_mean(&est), acc_se(&est), acc_mean(&ref), acc_se(&ref));
+            t_check(!estimate_agrees(&est, &ref) && (c->hi == 0 || (ratio > c->lo && ratio < c->hi)), nm,
+                    "%.5g +- %.2g against %.5g +- %.2g", acc_mean(&est), acc_se(&est), acc_mean(&ref),
+                    acc_se(&ref));
             snprintf(nm, sizeof nm, "light %s", c->what);
             t_xfail(nm, "erratum %s: light sampling gives %.3f times the light seen (%.4g sr of %.4g)",
                     c->erratum, acc_mean(&est) / acc_mean(&ref), acc_mean(&est), acc_mean(&ref));
@@ -861,33 +1076,45 @@ static void test_light_errata(void)
     static const light_case cases[] = {
         {"partial-sampling", "hemisphere dome (ReverseOrientation) seen from inside",
          "Shape \"sphere\" \"float radius\" 2 \"float zmin\" 0", {0, 0, 0, 1, 1, 1}, 1,
-         {0.3f, -0.2f, 0.4f}, MT_FIX_PARTIAL_SAMPLING, 0},
+         {0.3f, -0.2f, 0.4f}, MT_FIX_PARTIAL_SAMPLING, 0, 0, 0, 0},
         {"partial-sampling", "annulus sector (innerradius 0.5 of 1, phimax 270)",
          "Shape \"disk\" \"float radius\" 1 \"float innerradius\" 0.5 \"float phimax\" 270",
-         {0, 0, 2, 1, 1, 1}, 1, {0.1f, 0.2f, 0}, MT_FIX_PARTIAL_SAMPLING, 0},
+         {0, 0, 2, 1, 1, 1}, 1, {0.1f, 0.2f, 0}, MT_FIX_PARTIAL_SAMPLING, 0, MT_FIX_DISK_PARTIALS, 0, 0},
         {"partial-sampling", "half sphere (phimax 180) seen from outside",
          "Shape \"sphere\" \"float phimax\" 180", {0.2, 0.1, 3, 1, 1, 1}, 0, {0, 0, 0},
-         MT_FIX_PARTIAL_SAMPLING, 0},
+         MT_FIX_PARTIAL_SAMPLING, 0, 0, 0, 0},
         {"quadric-scale", "sphere under Scale 2 seen from outside", "Shape \"sphere\"",
-         {0, 0, 5, 2, 2, 2}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
+         {0, 0, 5, 2, 2, 2}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
         {"quadric-scale", "disk under Scale 2", "Shape \"disk\" \"float radius\" 0.7",
-         {0, 0, 3, 2, 2, 2}, 1, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
+         {0, 0, 3, 2, 2, 2}, 1, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, MT_FIX_DISK_PARTIALS, 0, 0},
         {"quadric-scale", "ellipsoid (Scale 2 2 1) seen from outside", "Shape \"sphere\"",
-         {0, 0, 4, 2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
-        /* mirrored: ShapeSet's re-intersection moves every sample to the
-         * front, which the pdf must count with the bit alone too */
+         {0, 0, 4, 2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
+        /* mirrored: with quadric-scale fixed an ellipsoid's samples move to
+         * the front, which the pdf must count */
         {"quadric-scale", "mirrored ellipsoid (Scale -2 2 1) seen from outside", "Shape \"sphere\"",
-         {0, 0, 4, -2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0},
+         {0, 0, 4, -2, 2, 1}, 0, {0, 0, 0}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
         {"quadric-scale", "cylinder under Scale 2 seen from its axis (ReverseOrientation)",
-         "Shape \"cylinder\"", {0, 0, 0, 2, 2, 2}, 1, {0, 0.1f, 0.3f}, MT_FIX_QUADRIC_SCALE, 0},
+         "Shape \"cylinder\"", {0, 0, 0, 2, 2, 2}, 1, {0, 0.1f, 0.3f}, MT_FIX_QUADRIC_SCALE, 0, 0, 0, 0},
+        /* the release: about p_front / (p_front + p_back); the 2012 source's
+         * re-intersection gave 0 from this side */
         {"shapeset-hit", "closed mesh (octahedron) seen from above", OCTAHEDRON,
-         {0.3, 0.2, -3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_SHAPESET_HIT, 0},
+         {0.3, 0.2, -3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_SHAPESET_HIT, 0, 0, 0.4, 0.6},
+        /* a sample on the far side is blocked by the near side, and
+         * Shape::Pdf counts the near point alone: unbiased since df276f5
+         * (the 2012 snapshot's re-intersection brought both to the near
+         * point: 2.861 times the light) */
         {"shapeset-hit", "cylinder seen from outside", "Shape \"cylinder\"", {0, 3, 0, 1, 1, 1}, 0,
-         {0, 0, 0}, MT_FIX_SHAPESET_HIT, 0},
-        /* Sample() ignores the mirror, but ShapeSet's re-intersection
-         * replaces its normal with the hit's */
-        {"triangle-facing", "mirrored octahedron (Scale -1 1 1) seen from below", OCTAHEDRON,
-         {0.3, 0.2, 3, -1, 1, 1}, 0, {0, 0, 0}, MT_FIX_TRIANGLE_FACING, 1},
+         {0, 0, 0}, MT_FIX_SHAPESET_HIT, 1, 0, 0, 0},
+        /* Sample() ignores the mirror; the 2012 snapshot's re-intersection
+         * replaced its normal with the hit's, the release leaves it */
+        {"triangle-facing", "mirrored quad (Scale -1 1 1) seen from the side it faces",
+         "Shape \"trianglemesh\" \"integer indices\" [0 2 1 0 3 2]"
+         " \"point P\" [-0.6 -0.4 0  0.6 -0.4 0  0.6 0.4 0  -0.6 0.4 0]",
+         {0.3, 0.2, 2, -1, 1, 1}, 0, {0, 0, 0}, MT_FIX_TRIANGLE_FACING, 0, 0, 0, 0},
+        /* hits face -z, samples +z: seen from below, rays find the light
+         * and light sampling finds none */
+        {"disk-partials", "disk (its hits facing -z) seen from below", "Shape \"disk\" \"float radius\" 0.7",
+         {0, 0, 3, 1, 1, 1}, 0, {0, 0, 0}, MT_FIX_DISK_PARTIALS, 0, 0, 0, 0},
     };
     size_t i;
     for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) check_light_erratum(&cases[i]);
@@ -1080,6 +1307,7 @@ int main(void)
     test_cameras();
     test_lens_differentials();
     test_lens_texture_filtering();
+    test_specular_differentials();
     test_filters();
     test_film_normalization();
     test_crop_window();

@@ -232,6 +232,30 @@ static void check_param_hits(const char *name, mt_shape *s, const fd_shape *f, i
     }
 }
 
+/* A ray tangent to a sphere or a cylinder, with a discriminant of exactly
+ * 0: one root, a hit (pbrt-v2's Quadratic as released, 69e9884; the 2012
+ * source returned false for a zero discriminant and missed). */
+static void test_tangent_rays(void)
+{
+    mt_shape *sp = must_shape("Shape \"sphere\"", NULL, 0);
+    mt_shape *cy = must_shape("Shape \"cylinder\" \"float zmin\" -1 \"float zmax\" 1", NULL, 0);
+    mt_ray r;
+    mt_hit h;
+    int ok_s = 0, ok_c = 0;
+    if (sp) {
+        r = mt_ray_make(mt_v3(1, 0, -5), mt_v3(0, 0, 1), 0, MT_RAY_TMAX);
+        ok_s = mt_shape_intersect(sp, 0, &r, &h) && h.t == 5;
+    }
+    if (cy) {
+        r = mt_ray_make(mt_v3(1, -5, 0.5f), mt_v3(0, 1, 0), 0, MT_RAY_TMAX);
+        ok_c = mt_shape_intersect(cy, 0, &r, &h) && h.t == 5;
+    }
+    t_check(ok_s && ok_c, "sphere and cylinder: a tangent ray (discriminant exactly 0) hits at its "
+            "one root (69e9884)", "sphere %d, cylinder %d", ok_s, ok_c);
+    mt_shape_destroy(sp);
+    mt_shape_destroy(cy);
+}
+
 static void test_sphere_closed_forms(void)
 {
     /* pbrt-v2: dpdu = (-phimax y, phimax x, 0), dpdv = (thetamax - thetamin)
@@ -315,7 +339,8 @@ static void test_disk(void)
     mt_transform xf = placement(1);
     disk_par dp = {0.3, 2, 0, 2 * PI_D};
     fd_shape f;
-    mt_shape *s = must_shape("Shape \"disk\" \"float radius\" 2 \"float height\" 0.3", &xf, 0);
+    mt_shape *s = must_shape_mode("Shape \"disk\" \"float radius\" 2 \"float height\" 0.3", &xf, 0,
+                                  MT_FIX_DISK_PARTIALS);
     mt_rng rng;
     int i, bad = 0;
     double worst_u = 0, worst_v = 0;
@@ -323,13 +348,17 @@ static void test_disk(void)
     f.par = &dp;
     f.p = disk_par_fn;
     f.o2w = &xf;
-    /* a full disk without a hole: pbrt-v2's derivatives are exact */
-    check_param_hits("disk (full, rotated)", s, &f, 2000, 0.01, 0.99, 0.01, 0.98, 0);
+    /* a full disk without a hole, corrected */
+    check_param_hits("disk (full, rotated) with disk-partials fixed", s, &f, 2000, 0.01, 0.99, 0.01,
+                     0.98, 0);
     mt_shape_destroy(s);
 
-    /* a partial annulus: pbrt-v2's dpdu carries phimax / 2 pi, dpdv
-     * (radius - innerradius) / radius / (1 - v) instead of (radius -
-     * innerradius) / rho: reproduced, and measured against the true ones */
+    /* a partial annulus: pbrt-v2 as released has dpdu = phimax (-y, x, 0),
+     * the derivative (the 2012 snapshot scaled it by phimax / 2 pi), and
+     * dpdv = (x, y) (radius - innerradius) / rho, the opposite of the
+     * derivative (26fb330; the 2012 snapshot had -(x, y) / (1 - v) (radius -
+     * innerradius) / radius), so n = -z: reproduced, and measured against
+     * the true ones */
     s = must_shape("Shape \"disk\" \"float radius\" 2 \"float innerradius\" 0.5 "
                    "\"float phimax\" 200",
                    NULL, 0);
@@ -359,22 +388,25 @@ static void test_disk(void)
         mt_hit_surface(&h, &r, &sf);
         rho = sqrt(q.x * q.x + q.y * q.y);
         omv = (rho - 0.5) / 1.5;
-        pbrt_u = dscale(D3(-q.y, q.x, 0), dp.phimax * dp.phimax / (2 * PI_D));
-        pbrt_v = dscale(D3(-q.x / omv, -q.y / omv, 0), 1.5 / 2);
+        (void)omv;
+        pbrt_u = dscale(D3(-q.y, q.x, 0), dp.phimax);
+        pbrt_v = dscale(D3(q.x, q.y, 0), 1.5 / rho);
         if (drel(dv(sf.dg.dpdu), pbrt_u, 1) > 16 * TOL || drel(dv(sf.dg.dpdv), pbrt_v, 1) > 16 * TOL ||
             fabs(sf.dg.u - phi / dp.phimax) > 16 * TOL || fabs(sf.dg.v - v) > 1e3 * TOL ||
-            drel(dv(sf.dg.n), D3(0, 0, 1), 1) > TOL)
+            drel(dv(sf.dg.n), D3(0, 0, -1), 1) > TOL)
             bad++;
-        worst_u = fmax(worst_u, fabs(dlen(pbrt_u) / dlen(pu) - 1));
-        worst_v = fmax(worst_v, fabs(dlen(pbrt_v) / dlen(pv) - 1));
+        worst_u = fmax(worst_u, drel(pbrt_u, pu, 1e-3));
+        worst_v = fmax(worst_v, drel(pbrt_v, pv, 1e-3));
     }
-    t_check(bad == 0, "disk (annulus, partial): pbrt-v2's dpdu, dpdv, (u, v), n = +z", "%d bad", bad);
-    t_check(worst_u > 0.4 && worst_v > 1, "disk (annulus, partial): pbrt-v2's partials are not "
-            "the parameterisation's", "off by %.3g and %.3g", worst_u, worst_v);
-    t_xfail("disk dpdu", "erratum disk-partials: pbrt-v2 scales dpdu by phimax / 2 pi: |dpdu| off "
-            "by %.3g for phimax 200", worst_u);
-    t_xfail("disk dpdv", "erratum disk-partials: pbrt-v2's dpdv is exact only without a hole: "
-            "|dpdv| off by up to %.3g for innerradius 0.5 of 2", worst_v);
+    t_check(bad == 0, "disk (annulus, partial): pbrt-v2's dpdu, dpdv = -(x, y) (innerradius - "
+            "radius) / rho, (u, v), n = -z", "%d bad", bad);
+    t_check(worst_u < 1e-3, "disk (annulus, partial): dpdu = finite differences (992b6aa)",
+            "off by %.3g", worst_u);
+    t_check(worst_v > 1.9, "disk (annulus, partial): pbrt-v2's dpdv is the opposite of the "
+            "derivative", "off by %.3g of it", worst_v);
+    t_xfail("disk dpdv", "erratum disk-partials: pbrt-v2's dpdv (26fb330) is the derivative "
+            "negated (off by %.3g of its length), and the normal of its hits -z where Sample() "
+            "gives +z", worst_v);
     mt_shape_destroy(s);
     /* corrected: the derivatives of the parameterisation, rotated and scaled */
     xf = placement(1.5);
@@ -391,22 +423,27 @@ static void test_disk(void)
 
 static void test_disk_centre(void)
 {
-    /* pbrt-v2's derivatives vanish at the exact centre and its normal is
-     * NaN; materia gives a unit normal and non-zero derivatives */
-    mt_shape *s = must_shape("Shape \"disk\"", NULL, 0);
-    mt_ray r = mt_ray_make(mt_v3(0, 0, 1), mt_v3(0, 0, -1), 0, MT_RAY_TMAX);
-    mt_hit h;
-    mt_surface sf;
-    if (!s) return;
-    if (t_check(mt_shape_intersect(s, 0, &r, &h), "disk: hit at the centre", "missed")) {
-        mt_hit_surface(&h, &r, &sf);
-        t_check(mt_v3_is_finite(sf.dg.n) && fabs(sf.dg.n.z - 1) < TOL &&
-                    mt_v3_len2(sf.dg.dpdu) > 0 && mt_v3_len2(sf.dg.dpdv) > 0 &&
-                    fabs(sf.dg.v - 1) < 1e-4,
-                "disk: centre has n = +z and non-zero derivatives", "n %g %g %g", sf.dg.n.x,
-                sf.dg.n.y, sf.dg.n.z);
+    /* pbrt-v2's derivatives are 0/0 at the exact centre and its normal is
+     * NaN; materia gives a unit normal (-z in pbrt-v2 mode, whose hits face
+     * -z, +z corrected) and non-zero derivatives */
+    int m;
+    for (m = 0; m < 2; ++m) {
+        mt_shape *s = must_shape_mode("Shape \"disk\"", NULL, 0, m ? MT_MODE_CORRECTED : MT_MODE_PBRT_V2);
+        mt_ray r = mt_ray_make(mt_v3(0, 0, 1), mt_v3(0, 0, -1), 0, MT_RAY_TMAX);
+        mt_hit h;
+        mt_surface sf;
+        if (!s) return;
+        if (t_check(mt_shape_intersect(s, 0, &r, &h), "disk: hit at the centre", "missed")) {
+            mt_hit_surface(&h, &r, &sf);
+            t_check(mt_v3_is_finite(sf.dg.n) && fabs(sf.dg.n.z - (m ? 1 : -1)) < TOL &&
+                        mt_v3_len2(sf.dg.dpdu) > 0 && mt_v3_len2(sf.dg.dpdv) > 0 &&
+                        fabs(sf.dg.v - 1) < 1e-4,
+                    m ? "disk: centre has n = +z and non-zero derivatives (corrected mode)"
+                      : "disk: centre has n = -z and non-zero derivatives (pbrt-v2 mode)",
+                    "n %g %g %g", sf.dg.n.x, sf.dg.n.y, sf.dg.n.z);
+        }
+        mt_shape_destroy(s);
     }
-    mt_shape_destroy(s);
 }
 
 static void test_cylinder(void)
@@ -789,8 +826,8 @@ static void test_triangle_facing(void)
     t_xfail("triangle facing", "erratum triangle-facing: a triangle with degenerate or mirrored "
             "uvs faces against its winding; with S only and ReverseOrientation the shading normal "
             "is opposite to the hit's; under a mirror all %d of 8 sampled normals (octahedron) "
-            "point to the other side than its hits' (the area light's ShapeSet re-intersection "
-            "hides it, see test_render_basics)", bad[0][0]);
+            "point to the other side than its hits' (a mirrored mesh light emits one way to rays "
+            "and the other to light sampling, see test_render_basics)", bad[0][0]);
     t_check(fabs(nz[1][0] - 1) < TOL && fabs(nz[1][1] - 1) < TOL && fabs(nz[1][2] - 1) < TOL &&
                 bad[1][0] == 0 && bad[1][1] == 0,
             "triangle facing with triangle-facing fixed: the winding's side for every uv map, the "
@@ -1350,6 +1387,10 @@ static void test_spawn(void)
     mt_shape *s2 = must_shape("Shape \"sphere\" \"float radius\" 1", &tiny, 0);
     mt_shape *c = must_shape("Shape \"cylinder\"", NULL, 0);
     mt_shape *d = must_shape("Shape \"disk\"", &far, 0);
+    /* untransformed at height 0: its world points lie exactly on z = 0, so
+     * the error bound along the normal is 0 and spawned rays start on the
+     * plane itself (a t = 0 hit is no hit) */
+    mt_shape *d0 = must_shape("Shape \"disk\"", NULL, 0);
     mt_shape *m = must_shape("Shape \"loopsubdiv\" \"integer nlevels\" 2 "
                              "\"integer indices\" [0 1 2 0 2 3 0 3 1 1 3 2] "
                              "\"point P\" [1 1 1 -1 -1 1 -1 1 -1 1 -1 -1]",
@@ -1358,11 +1399,13 @@ static void test_spawn(void)
     if (s2) check_spawn("sphere of radius 1e-3", s2, mt_v3(0, 0, 0), 1e-3);
     if (c) check_spawn("cylinder", c, mt_v3(0, 0, 0), 1);
     if (d) check_spawn("disk far from the origin", d, mt_v3(1000, -2000, 500), 1);
+    if (d0) check_spawn("disk in the plane z = 0", d0, mt_v3(0, 0, 0), 1);
     if (m) check_spawn("subdivided tetrahedron far from the origin", m, mt_v3(1000, -2000, 500), 1);
     mt_shape_destroy(s1);
     mt_shape_destroy(s2);
     mt_shape_destroy(c);
     mt_shape_destroy(d);
+    mt_shape_destroy(d0);
     mt_shape_destroy(m);
 }
 
@@ -1523,6 +1566,7 @@ int main(void)
 {
     test_sphere_closed_forms();
     test_sphere_params();
+    test_tangent_rays();
     test_disk();
     test_disk_centre();
     test_cylinder();

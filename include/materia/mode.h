@@ -56,7 +56,7 @@ typedef unsigned mt_mode;
 #define MT_FIX_SHAPESET_HIT        (1u << 25) /* ShapeSet keeps the last hit; pdf counts one */
 #define MT_FIX_TRIANGLE_HIT_POINT  (1u << 26) /* triangle hit point o + t d, off the plane */
 /* The camera */
-#define MT_FIX_THIN_LENS_DIFFERENTIALS (1u << 27) /* lens camera given the pinhole's differentials */
+#define MT_FIX_ORTHO_LENS          (1u << 27) /* orthographic lens about the origin, not the pixel */
 /* The dipole integrator (integrators/dipolesubsurface.cpp, renderers/surfacepoints.cpp) */
 #define MT_FIX_DIPOLE_AREA         (1u << 29) /* each point given the disk pi (d/2)^2: half its area */
 #define MT_FIX_OCTREE_CLUSTER      (1u << 30) /* cluster E the unweighted mean of its children's */
@@ -75,7 +75,7 @@ typedef unsigned mt_mode;
      MT_FIX_EXR_HALF | MT_FIX_EXR_MISSING_CHANNELS | MT_FIX_PFM_ROWS |                      \
      MT_FIX_LOOP_NORMALS | MT_FIX_DISK_PARTIALS | MT_FIX_NORMAL_DERIVATIVES |                \
      MT_FIX_TRIANGLE_FACING | MT_FIX_PARTIAL_SAMPLING | MT_FIX_QUADRIC_SCALE |               \
-     MT_FIX_SHAPESET_HIT | MT_FIX_TRIANGLE_HIT_POINT | MT_FIX_THIN_LENS_DIFFERENTIALS |       \
+     MT_FIX_SHAPESET_HIT | MT_FIX_TRIANGLE_HIT_POINT | MT_FIX_ORTHO_LENS |                   \
      MT_FIX_DIPOLE_AREA | MT_FIX_OCTREE_CLUSTER | MT_FIX_FDR_RANGE)
 
 /* One entry of the errata catalog. bit is 0 for entries that materia fixes in

@@ -57,13 +57,16 @@ static const mt_erratum errata[] = {
      "the masks applied to the control points; at boundary vertices of four faces or more the "
      "across tangent from the one-ring subdivided to its limit (the limit tangent for four and "
      "five faces; from six on the rules leave no single tangent plane and it is a choice)"},
-    {"disk-partials", MT_FIX_DISK_PARTIALS, "geometry", "disk.cpp Disk::Intersect",
-     "dpdu = phimax (-y, x, 0) carries an extra factor phimax / 2 pi, and dpdv = -(x, y) / "
-     "(1 - v) (radius - innerradius) / radius: the derivatives of the disk's (u, v) only for a "
-     "full disk (dpdu) or one without a hole (dpdv)",
-     "pbrt-v3's dpdu = phimax (-y, x, 0), dpdv = (x, y) (innerradius - radius) / rho"},
+    {"disk-partials", MT_FIX_DISK_PARTIALS, "geometry", "disk.cpp Disk::Intersect (992b6aa, 26fb330)",
+     "dpdv = (x, y) (radius - innerradius) / rho is the derivative of the disk's (u, v) negated "
+     "(dpdu = phimax (-y, x, 0) is right), so a hit's normal Normalize(Cross(dpdu, dpdv)) is -z "
+     "while Disk::Sample gives +z: a disk light emits towards -z to the rays that hit it and "
+     "towards +z to light sampling (the 2012 source had dpdu times phimax / 2 pi and dpdv = "
+     "-(x, y) / (1 - v) (radius - innerradius) / radius, normal +z)",
+     "pbrt-v3's dpdv = (x, y) (innerradius - radius) / rho: the normal +z for hits and samples"},
     {"normal-derivatives", MT_FIX_NORMAL_DERIVATIVES, "geometry",
-     "sphere.cpp, cylinder.cpp Intersect; trianglemesh.cpp Triangle::GetShadingGeometry",
+     "sphere.cpp, cylinder.cpp Intersect; trianglemesh.cpp Triangle::GetShadingGeometry "
+     "(397e01e: the primitive's transform, the shape's without instancing)",
      "dndu and dndv (of the object-space unit normal, or of the interpolated vertex normal "
      "before normalization) are carried to world space as normals: not the derivatives of the "
      "world unit normal unless the transform is rigid (half of them under Scale 2), nor negated "
@@ -74,8 +77,9 @@ static const mt_erratum errata[] = {
      "trianglemesh.cpp Triangle::Intersect, Triangle::Sample, Triangle::GetShadingGeometry",
      "a hit's normal follows dpdu x dpdv, so it turns over with a mirrored uv map, and with "
      "degenerate uvs it is Cross(e2, e1), against the winding; Sample() negates the winding's "
-     "normal under ReverseOrientation only, not under a mirroring transform as a hit's is; "
-     "with S and no N the shading normal, taken from the hit's, is flipped a second time",
+     "normal under ReverseOrientation only, not under a mirroring transform as a hit's is (a "
+     "mirrored mesh light emits one way to rays and the other to light sampling); with S and "
+     "no N the shading normal, taken from the hit's, is flipped a second time",
      "pbrt-v3's rule (Triangle::Intersect; pbrt-v4's Triangle::Sample): the winding's normal, "
      "negated under ReverseOrientation xor a handedness change, for hits, samples and shading"},
     {"partial-sampling", MT_FIX_PARTIAL_SAMPLING, "geometry",
@@ -95,30 +99,33 @@ static const mt_erratum errata[] = {
      "world-space centre, and an ellipsoid is sampled as a sphere",
      "the world density 1 / (Area dA_world / dA_object) at the point; the cone with the world "
      "radius under a similarity, area sampling otherwise"},
-    {"shapeset-hit", MT_FIX_SHAPESET_HIT, "geometry", "light.cpp ShapeSet::Sample; shape.cpp "
-     "Shape::Pdf",
-     "the ray towards the sample is intersected with every primitive, each hit overwriting the "
-     "one before (the comment says closest): the point kept is on the last primitive met in "
-     "index order, which the shadow ray then finds behind the nearer ones; and Shape::Pdf "
-     "counts one point of a primitive along a direction while ShapeSet brings every sample on "
-     "that ray to one point (a cylinder light seen from outside: counted once, reached twice)",
-     "the closest point; the pdf of a direction sums over every point of the set along it"},
+    {"shapeset-hit", MT_FIX_SHAPESET_HIT, "geometry", "light.cpp ShapeSet::Sample, ShapeSet::Pdf; "
+     "shape.cpp Shape::Pdf",
+     "the sample stays where the chosen primitive's sampling put it (df276f5 removed the "
+     "re-intersection, which in the 2012 source kept the last primitive the ray met), while "
+     "the pdf of a direction adds the density of every primitive it meets: a sample on a "
+     "primitive hidden behind another of the set is blocked by it, its density counted all the "
+     "same (a closed mesh light seen from outside gives about half its light)",
+     "the closest point of the set on the ray from p through the sample; the pdf of a "
+     "direction sums over every point of the set along it"},
     {"triangle-hit-point", MT_FIX_TRIANGLE_HIT_POINT, "geometry", "trianglemesh.cpp Triangle::Intersect",
      "the hit point is ray(t) = o + t d, which float rounding puts up to about |t d| 2^-23 off "
      "the triangle's plane on either side: a 3D texture whose value changes across the plane "
      "(a 3D checkerboard on the floor z = 0) takes one side or the other at random",
      "the barycentric point b0 p0 + b1 p1 + b2 p2 (pbrt-v3), on the plane to within its "
      "rounding"},
-    {"thin-lens-differentials", MT_FIX_THIN_LENS_DIFFERENTIALS, "camera",
-     "perspective.cpp PerspectiveCamera::GenerateRayDifferential, orthographic.cpp "
-     "OrthoCamera::GenerateRayDifferential",
-     "with lensradius > 0 the differentials are the lensless camera's: the perspective "
-     "camera's neighbour rays leave the lens point in the pinhole's directions of the next "
-     "pixels (they miss the main ray by the lens offset times t / focaldistance), the "
-     "orthographic camera's are the main ray shifted by a pixel at every distance; texture "
-     "filtering then sees the footprint of the lens offset, not of a pixel",
-     "the rays of the next pixels through the same lens point and their points on the plane "
-     "of focus (pbrt-v3), the derivative of the camera ray in raster x and y"},
+    {"ortho-lens", MT_FIX_ORTHO_LENS, "camera",
+     "orthographic.cpp OrthoCamera::GenerateRay, GenerateRayDifferential",
+     "with lensradius > 0 every ray starts on the lens about the camera-space origin, "
+     "ray->o = (lensU, lensV, 0), whatever the pixel, and aims at Pcamera + focalDistance z: "
+     "a perspective projection from the origin that gives the orthographic image only in the "
+     "plane of focus (elsewhere a point is drawn at its orthographic position times "
+     "focalDistance / depth); the differentials (88cdb51) aim at Pcamera + dxCamera at depth "
+     "focalDistance / d.z, d the main ray's direction, instead of in the plane of focus "
+     "(pbrt-v3 and pbrt-v4 do the same)",
+     "the lens about the pixel's point Pcamera, aimed at Pcamera + focalDistance z; the "
+     "differentials the rays of the next pixels through the same lens point (the main ray "
+     "moved by dxCamera, dyCamera)"},
     {"dipole-area", MT_FIX_DIPOLE_AREA, "integrator", "surfacepoints.cpp SurfacePointTask::Run",
      "every irradiance point is given the area pi (d/2)^2 of the disk of diameter "
      "minsampledistance, but a Poisson-disk set of minimum distance d covers only about half "

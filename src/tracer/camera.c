@@ -1,6 +1,16 @@
 /*
  * pbrt-v2's perspective and orthographic cameras (ProjectiveCamera's
- * transforms, GenerateRayDifferential of each, the thin lens of both).
+ * transforms, GenerateRayDifferential of each, the thin lens of both), as
+ * released: with a lens, the differentials are the rays of the next pixels
+ * through the same lens point (88cdb51; the 2012 snapshot gave the lens
+ * camera the lensless camera's differentials).
+ *
+ * Erratum ortho-lens (MT_FIX_ORTHO_LENS): pbrt-v2's orthographic camera
+ * puts the lens about the camera-space origin for every pixel, so with
+ * lensradius > 0 it is a perspective projection from the origin that
+ * matches the orthographic image only in the plane of focus, and its
+ * differentials aim at depth focalDistance / d.z instead of the plane of
+ * focus; corrected mode centres the lens on the pixel's point.
  */
 #include "materia/sampling.h"
 #include "tracer/camera.h"
@@ -93,29 +103,40 @@ void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff 
     mt_vec3 pc = mt_v3_add(c->p00, mt_v3_add(mt_v3_scale(c->dx_camera, s->image_x),
                                              mt_v3_scale(c->dy_camera, s->image_y)));
     mt_vec3 o, d, rxo, ryo, rxd, ryd;
-    /* erratum thin-lens-differentials: pbrt-v2 gives a lens camera the
-     * differentials of the lensless one (below); corrected, the neighbours
-     * are the rays of the pixels x + 1 and y + 1 through the same lens
-     * point, as pbrt-v3 computes them (cameras/perspective.cpp,
-     * orthographic.cpp GenerateRayDifferential) */
-    int lens_diff = c->lens_radius > 0 && (c->mode & MT_FIX_THIN_LENS_DIFFERENTIALS);
     if (c->orthographic) {
         const mt_vec3 z = mt_v3(0, 0, 1);
         o = pc;
         d = z;
+        rxo = mt_v3_add(o, c->dx_camera);
+        ryo = mt_v3_add(o, c->dy_camera);
+        rxd = ryd = d;
         if (c->lens_radius > 0) {
-            o = lens_point(c, s);
-            d = through_focus(c, o, pc, z);
-        }
-        if (lens_diff) {
-            rxo = ryo = o;
-            rxd = through_focus(c, o, mt_v3_add(pc, c->dx_camera), z);
-            ryd = through_focus(c, o, mt_v3_add(pc, c->dy_camera), z);
-        } else {
-            /* pbrt-v2: the main ray shifted by a pixel, at any distance */
-            rxo = mt_v3_add(o, c->dx_camera);
-            ryo = mt_v3_add(o, c->dy_camera);
-            rxd = ryd = d;
+            mt_vec3 lens = lens_point(c, s);
+            if (c->mode & MT_FIX_ORTHO_LENS) {
+                /* corrected: the lens about the pixel's point, so that every
+                 * pixel looks along +z through its own aperture; the ray of
+                 * pixel x + 1 through the same lens point is this one moved
+                 * by dxCamera */
+                o = mt_v3_add(pc, lens);
+                d = through_focus(c, o, pc, z);
+                rxo = mt_v3_add(o, c->dx_camera);
+                ryo = mt_v3_add(o, c->dy_camera);
+                rxd = ryd = d;
+            } else {
+                /* pbrt-v2 OrthoCamera::GenerateRayDifferential (erratum
+                 * ortho-lens): the lens about the camera-space origin
+                 * whatever the pixel; the differentials (88cdb51) leave that
+                 * lens point for Pcamera + dxCamera at the depth
+                 * focalDistance / d.z of the main ray's direction d, not at
+                 * the plane of focus */
+                mt_real ft;
+                o = lens;
+                d = through_focus(c, o, pc, z);
+                ft = c->focal_distance / d.z;
+                rxo = ryo = o;
+                rxd = mt_v3_normalize(mt_v3_sub(mt_v3_add(mt_v3_add(pc, c->dx_camera), mt_v3(0, 0, ft)), o));
+                ryd = mt_v3_normalize(mt_v3_sub(mt_v3_add(mt_v3_add(pc, c->dy_camera), mt_v3(0, 0, ft)), o));
+            }
         }
     } else {
         mt_vec3 pin = mt_v3_normalize(pc), pinx = mt_v3_normalize(mt_v3_add(pc, c->dx_camera)),
@@ -130,17 +151,16 @@ void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff 
             rd->ry_d = to_world_vector(c, piny);
             return;
         }
+        /* pbrt-v2 PerspectiveCamera::GenerateRayDifferential with the
+         * release's 88cdb51 (the 2012 snapshot gave the lens point the
+         * pinhole's neighbour directions): the rays of the pixels x + 1
+         * and y + 1 through the same lens point, aimed where the pinhole's
+         * rays of those pixels meet the plane of focus */
         o = lens_point(c, s);
         d = through_focus(c, o, mt_v3(0, 0, 0), pin);
         rxo = ryo = o;
-        if (lens_diff) {
-            rxd = through_focus(c, o, mt_v3(0, 0, 0), pinx);
-            ryd = through_focus(c, o, mt_v3(0, 0, 0), piny);
-        } else {
-            /* pbrt-v2: the lens origin with the pinhole's neighbour directions */
-            rxd = pinx;
-            ryd = piny;
-        }
+        rxd = through_focus(c, o, mt_v3(0, 0, 0), pinx);
+        ryd = through_focus(c, o, mt_v3(0, 0, 0), piny);
     }
     rd->ray = mt_ray_make(to_world_point(c, o), to_world_vector(c, d), 0, MT_RAY_TMAX);
     rd->has_differentials = 1;

@@ -12,7 +12,7 @@
 
 typedef struct mt__camera {
     int orthographic;
-    mt_mode mode;                 /* MT_FIX_THIN_LENS_DIFFERENTIALS is the camera's */
+    mt_mode mode;                 /* MT_FIX_ORTHO_LENS is the camera's */
     mt_transform raster_to_camera;
     mt_transform camera_to_world;
     mt_real lens_radius, focal_distance;
@@ -29,7 +29,7 @@ typedef struct mt__camera_sample {
 
 /* screen = {xmin, xmax, ymin, ymax} (pbrt-v2's screenWindow), the film's full
  * resolution, fov in degrees (perspective only); mode: the scene's (erratum
- * thin-lens-differentials). */
+ * ortho-lens). */
 void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_real screen[4],
                      mt_real lens_radius, mt_real focal_distance, int xres, int yres,
                      const mt_transform *camera_to_world, mt_mode mode);
@@ -40,8 +40,8 @@ void mt__camera_init(mt__camera *c, int orthographic, mt_real fov_deg, const mt_
 void mt__camera_default_screen(mt_real frame, mt_real screen[4]);
 
 /* GenerateRayDifferential: the ray in world space, with differentials (with
- * a lens: pbrt-v2's, or in corrected mode the neighbour pixels' rays through
- * the same lens point). */
+ * a lens, the neighbour pixels' rays through the same lens point; the
+ * orthographic camera's lens as the mode says). */
 void mt__camera_ray(const mt__camera *c, const mt__camera_sample *s, mt_raydiff *rd);
 
 #endif

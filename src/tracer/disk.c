@@ -3,14 +3,19 @@
  * u = phi / phimax, v = 1 - (rho - innerradius) / (radius - innerradius)
  * (v = 1 at the inner edge). The normal is +z in object space.
  *
- * Erratum disk-partials (MT_FIX_DISK_PARTIALS): two of pbrt-v2's partial
- * derivatives are not the derivatives of its (u, v). dpdu carries an extra
- * factor phimax / 2 pi (exact only for a full disk), and dpdv is
- * -(x, y) / (1 - v) (radius - innerradius) / radius, exact only for
- * innerradius = 0. pbrt-v2 mode keeps them; corrected mode has pbrt-v3's
- * phimax (-y, x, 0) and (x, y) (innerradius - radius) / rho. At the exact
- * centre pbrt-v2's derivatives vanish and its normal is NaN; here they are
- * taken 1e-5 radius off the centre, as pbrt-v2's sphere does at its poles.
+ * Erratum disk-partials (MT_FIX_DISK_PARTIALS): pbrt-v2 as released
+ * (992b6aa, then 26fb330) has dpdu = phimax (-y, x, 0), the derivative of
+ * its (u, v), but dpdv = (x, y) (radius - innerradius) / rho, the opposite
+ * of the derivative (rho = radius - v (radius - innerradius) falls as v
+ * grows). The hit's normal, Normalize(Cross(dpdu, dpdv)), is then -z in
+ * object space, while Disk::Sample gives +z: an area light on a disk emits
+ * towards -z when a ray hits it and towards +z when it is sampled. pbrt-v2
+ * mode keeps this; corrected mode has pbrt-v3's (x, y) (innerradius -
+ * radius) / rho and the normal +z. (The 2012 snapshot had dpdu with an extra
+ * factor phimax / 2 pi and dpdv = -(x, y) / (1 - v) (radius - innerradius) /
+ * radius, with the normal +z.) At the exact centre the derivatives are 0/0
+ * and the normal NaN in pbrt-v2; here they are taken 1e-5 radius off the
+ * centre, as pbrt-v2's sphere does at its poles.
  *
  * Erratum partial-sampling (MT_FIX_PARTIAL_SAMPLING): pbrt-v2's Sample()
  * covers the full disk of the outer radius whatever innerradius and phimax
@@ -60,7 +65,11 @@ int mt__disk_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
      * exactly parallel to the plane are skipped here */
     if (r->d[2] == 0) return 0;
     th = (s->height - r->o[2]) / r->d[2];
-    if (!(th >= r->tmin && th <= r->tmax)) return 0;
+    /* t = 0 is no hit (pbrt-v3's Disk::Intersect): a ray spawned from the
+     * disk starts exactly on its plane when the plane's world point has no
+     * rounding error (the plane z = 0 untransformed), and its offset along
+     * the normal is then 0 */
+    if (!(th >= r->tmin && th <= r->tmax && th > 0)) return 0;
     p[0] = r->o[0] + th * r->d[0];
     p[1] = r->o[1] + th * r->d[1];
     p[2] = s->height; /* exactly on the plane (pbrt-v3) */
@@ -73,11 +82,10 @@ int mt__disk_hit(const mt_shape *s, const mt__oray *r, double *t, double p[3])
 
 void mt__disk_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
 {
-    static const double zero[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
+    static const double zero[3] = {0, 0, 0}, nz[3] = {0, 0, 1}, nmz[3] = {0, 0, -1};
     double rad = s->radius, ri = s->inner_radius, pm = s->phi_max;
-    double p[3], perr[3], phi, rho, one_minus_v, inv, dpdu[3], dpdv[3];
-    /* pbrt-v2: dpdu *= phiMax * INV_TWOPI */
-    double d_scale = (s->mode & MT_FIX_DISK_PARTIALS) ? 1 : pm * 0.15915494309189533577;
+    double p[3], perr[3], phi, rho, dpdu[3], dpdv[3], k;
+    int fixed = (s->mode & MT_FIX_DISK_PARTIALS) != 0;
     mt_real u, v;
     p[0] = ph[0];
     p[1] = ph[1];
@@ -87,28 +95,22 @@ void mt__disk_surface(const mt_shape *s, const double ph[3], mt_surface *sf)
     perr[2] = 0;
     phi = p[0] == 0 && p[1] == 0 ? 0 : mt__phi(p[0], p[1]);
     rho = sqrt(p[0] * p[0] + p[1] * p[1]);
-    one_minus_v = (rho - ri) / (rad - ri);
     u = (mt_real)(phi / pm);
-    v = (mt_real)(1 - one_minus_v);
+    v = (mt_real)(1 - (rho - ri) / (rad - ri));
     if (p[0] == 0 && p[1] == 0) {
         p[0] = 1e-5 * rad;
-        one_minus_v = (p[0] - ri) / (rad - ri);
+        rho = p[0];
     }
-    inv = one_minus_v > 0 ? 1 / one_minus_v : 0;
-    dpdu[0] = -pm * p[1] * d_scale;
-    dpdu[1] = pm * p[0] * d_scale;
+    dpdu[0] = -pm * p[1];
+    dpdu[1] = pm * p[0];
     dpdu[2] = 0;
-    if (s->mode & MT_FIX_DISK_PARTIALS) {
-        /* rho = radius - v (radius - innerradius): drho/dv = innerradius - radius */
-        double k = (ri - rad) / sqrt(p[0] * p[0] + p[1] * p[1]);
-        dpdv[0] = p[0] * k;
-        dpdv[1] = p[1] * k;
-    } else {
-        dpdv[0] = -p[0] * inv * ((rad - ri) / rad);
-        dpdv[1] = -p[1] * inv * ((rad - ri) / rad);
-    }
+    /* rho = radius - v (radius - innerradius): drho/dv = innerradius -
+     * radius; pbrt-v2 (26fb330) has the opposite sign */
+    k = (fixed ? ri - rad : rad - ri) / rho;
+    dpdv[0] = p[0] * k;
+    dpdv[1] = p[1] * k;
     dpdv[2] = 0;
-    mt__surface_from_object(s, ph, perr, dpdu, dpdv, zero, zero, nz, u, v, sf);
+    mt__surface_from_object(s, ph, perr, dpdu, dpdv, zero, zero, fixed ? nz : nmz, u, v, sf);
 }
 
 mt_real mt__disk_area(const mt_shape *s)

@@ -281,10 +281,10 @@ mt_real mt_shape_pdf_from(const mt_shape *s, uint32_t prim, mt_vec3 p, mt_vec3 w
 
 /* pbrt-v2 ShapeSet: every primitive of the shape, one chosen with
  * probability proportional to its area (ucomp) and sampled with (u1, u2).
- * _from samples as seen from p and, as pbrt-v2 does, returns the point where
- * the ray from p towards the sample meets the last primitive of the set
- * that it meets (tmin 1e-3), with that primitive's normal; the closest one
- * with shapeset-hit fixed. */
+ * _from samples as seen from p and, as pbrt-v2 as released does, returns
+ * the primitive's sample and normal; with shapeset-hit fixed, the point
+ * where the ray from p towards the sample first meets the set (tmin 1e-3),
+ * with that primitive's normal. */
 mt_real mt_shape_total_area(const mt_shape *s);
 mt_vec3 mt_shape_set_sample(const mt_shape *s, mt_real ucomp, mt_real u1, mt_real u2,
                             mt_vec3 *ns);

@@ -128,14 +128,54 @@ static mt_rgb trace(mt__thread_ctx *tc, const mt_raydiff *rd, int depth)
     return direct_li(tc, rd, &hit, depth);
 }
 
+void mt__specular_differentials(const mt_raydiff *rd, const mt_diffgeom *dg, const mt_diffgeom *dgs,
+                                mt_vec3 p, mt_vec3 n, mt_vec3 wo, mt_vec3 wi, int transmit,
+                                mt_real eta, mt_raydiff *next)
+{
+    mt_vec3 dndx = mt_v3_add(mt_v3_scale(dgs->dndu, dgs->dudx), mt_v3_scale(dgs->dndv, dgs->dvdx));
+    mt_vec3 dndy = mt_v3_add(mt_v3_scale(dgs->dndu, dgs->dudy), mt_v3_scale(dgs->dndv, dgs->dvdy));
+    mt_vec3 dwodx = mt_v3_sub(mt_v3_neg(rd->rx_d), wo), dwody = mt_v3_sub(mt_v3_neg(rd->ry_d), wo);
+    next->has_differentials = 1;
+    next->rx_o = mt_v3_add(p, dg->dpdx);
+    next->ry_o = mt_v3_add(p, dg->dpdy);
+    if (!transmit) {
+        /* pbrt-v2 SpecularReflect */
+        mt_real won = mt_v3_dot(wo, n);
+        mt_real dDNdx = mt_v3_dot(dwodx, n) + mt_v3_dot(wo, dndx);
+        mt_real dDNdy = mt_v3_dot(dwody, n) + mt_v3_dot(wo, dndy);
+        next->rx_d = mt_v3_add(mt_v3_sub(wi, dwodx),
+                               mt_v3_scale(mt_v3_add(mt_v3_scale(dndx, won), mt_v3_scale(n, dDNdx)), 2));
+        next->ry_d = mt_v3_add(mt_v3_sub(wi, dwody),
+                               mt_v3_scale(mt_v3_add(mt_v3_scale(dndy, won), mt_v3_scale(n, dDNdy)), 2));
+    } else {
+        /* pbrt-v2 SpecularTransmit as released (e6f6334): Igehy's refracted
+         * differentials written for the incident direction w = -wo, eta the
+         * relative index on the side w comes from (the 2012 snapshot
+         * differentiated with wo's signs and the inverted eta) */
+        mt_vec3 w = mt_v3_neg(wo), dwdx = mt_v3_neg(dwodx), dwdy = mt_v3_neg(dwody);
+        mt_real dDNdx = mt_v3_dot(dwdx, n) + mt_v3_dot(w, dndx);
+        mt_real dDNdy = mt_v3_dot(dwdy, n) + mt_v3_dot(w, dndy);
+        mt_real wn, win, mu, k;
+        if (mt_v3_dot(w, n) < 0) eta = 1 / eta;
+        wn = mt_v3_dot(w, n);
+        win = mt_v3_dot(wi, n);
+        mu = eta * wn - win;
+        k = eta - (eta * eta * wn) / win;
+        next->rx_d = mt_v3_sub(mt_v3_add(wi, mt_v3_scale(dwdx, eta)),
+                               mt_v3_add(mt_v3_scale(dndx, mu), mt_v3_scale(n, k * dDNdx)));
+        next->ry_d = mt_v3_sub(mt_v3_add(wi, mt_v3_scale(dwdy, eta)),
+                               mt_v3_add(mt_v3_scale(dndy, mu), mt_v3_scale(n, k * dDNdy)));
+    }
+    if (!mt_v3_is_finite(next->rx_d) || !mt_v3_is_finite(next->ry_d)) next->has_differentials = 0;
+}
+
 /* SpecularReflect / SpecularTransmit: one specular direction of type
  * MT_BSDF_REFLECTION or MT_BSDF_TRANSMISSION, the ray differentials of the
  * reflected or refracted neighbours (Igehy), and the radiance brought back. */
 static mt_rgb specular(mt__thread_ctx *tc, const mt_raydiff *rd, const mt__vertex *v,
                        unsigned lobe, const mt_real u[3], int depth)
 {
-    const mt_diffgeom *dgs = mt_bsdf_shading(v->bsdf);
-    mt_vec3 n = v->n, wo = v->wo, wi;
+    mt_vec3 n = v->n, wi;
     mt_bsdf_sample bs = mt__bsdf_sample_f_wo(v->bsdf, &v->bwo, u[0], u[1], u[2], lobe | MT_BSDF_SPECULAR);
     mt_raydiff next;
     mt_rgb Li;
@@ -143,36 +183,9 @@ static mt_rgb specular(mt__thread_ctx *tc, const mt_raydiff *rd, const mt__verte
     wi = bs.wi;
     next = mt_raydiff_from_ray(&rd->ray);
     next.ray = mt_surface_spawn(&v->sf, wi);
-    if (rd->has_differentials) {
-        mt_vec3 dndx = mt_v3_add(mt_v3_scale(dgs->dndu, dgs->dudx), mt_v3_scale(dgs->dndv, dgs->dvdx));
-        mt_vec3 dndy = mt_v3_add(mt_v3_scale(dgs->dndu, dgs->dudy), mt_v3_scale(dgs->dndv, dgs->dvdy));
-        mt_vec3 dwodx = mt_v3_sub(mt_v3_neg(rd->rx_d), wo), dwody = mt_v3_sub(mt_v3_neg(rd->ry_d), wo);
-        mt_real dDNdx = mt_v3_dot(dwodx, n) + mt_v3_dot(wo, dndx);
-        mt_real dDNdy = mt_v3_dot(dwody, n) + mt_v3_dot(wo, dndy);
-        next.has_differentials = 1;
-        next.rx_o = mt_v3_add(v->p, v->sf.dg.dpdx);
-        next.ry_o = mt_v3_add(v->p, v->sf.dg.dpdy);
-        if (lobe == MT_BSDF_REFLECTION) {
-            mt_real won = mt_v3_dot(wo, n);
-            next.rx_d = mt_v3_add(mt_v3_sub(wi, dwodx),
-                                  mt_v3_scale(mt_v3_add(mt_v3_scale(dndx, won), mt_v3_scale(n, dDNdx)), 2));
-            next.ry_d = mt_v3_add(mt_v3_sub(wi, dwody),
-                                  mt_v3_scale(mt_v3_add(mt_v3_scale(dndy, won), mt_v3_scale(n, dDNdy)), 2));
-        } else {
-            mt_real eta = mt_bsdf_eta(v->bsdf), wn, win, mu, k;
-            mt_vec3 w = mt_v3_neg(wo);
-            if (mt_v3_dot(wo, n) < 0) eta = 1 / eta;
-            wn = mt_v3_dot(w, n);
-            win = mt_v3_dot(wi, n);
-            mu = eta * wn - win;
-            k = eta - (eta * eta * wn) / win;
-            next.rx_d = mt_v3_sub(mt_v3_add(wi, mt_v3_scale(dwodx, eta)),
-                                  mt_v3_add(mt_v3_scale(dndx, mu), mt_v3_scale(n, k * dDNdx)));
-            next.ry_d = mt_v3_sub(mt_v3_add(wi, mt_v3_scale(dwody, eta)),
-                                  mt_v3_add(mt_v3_scale(dndy, mu), mt_v3_scale(n, k * dDNdy)));
-        }
-        if (!mt_v3_is_finite(next.rx_d) || !mt_v3_is_finite(next.ry_d)) next.has_differentials = 0;
-    }
+    if (rd->has_differentials)
+        mt__specular_differentials(rd, &v->sf.dg, mt_bsdf_shading(v->bsdf), v->p, n, v->wo, wi,
+                                   lobe == MT_BSDF_TRANSMISSION, mt_bsdf_eta(v->bsdf), &next);
     Li = trace(tc, &next, depth + 1);
     return mt_rgb_scale(mt_rgb_mul(bs.f, Li), mt_v3_absdot(wi, n) / bs.pdf);
 }

@@ -207,15 +207,15 @@ void mt__light_sample_l(const mt__light *l, const mt_surface *sf, mt_vec3 p, mt_
         mt_real pdf = 0;
         int any_dir = 0;
         mt_shape_kind k = mt_shape_kind_of(l->shape);
-        /* pbrt-v2's ShapeSet re-intersects the ray from p towards the sample
-         * with its shapes and keeps that point and its normal. A lone sphere
-         * or disk gives back the sampled point itself (the sample is the
-         * first hit of that ray: the cone's point, a point seen from inside,
-         * a disk's, or an area-sampled ellipsoid's sample already moved
-         * there), and the sampled normal equals the hit's unless the
-         * transform swaps handedness: skip the re-intersection. */
+        /* pbrt-v2's ShapeSet::Sample (as released, without re-intersection;
+         * corrected mode moves the sample to the set's closest point along
+         * its ray). A lone sphere answers for itself, with the pdf its cone
+         * gives every direction; so does a lone disk, whose sample is the
+         * first point of its ray. Corrected, their re-intersection gives the
+         * sample back unless a mirror makes the hit's normal differ. */
         if ((k == MT_SHAPE_SPHERE || k == MT_SHAPE_DISK) &&
-            mt_shape_flip(l->shape) == mt_shape_reverse_orientation(l->shape))
+            (!(mt_shape_mode(l->shape) & MT_FIX_SHAPESET_HIT) ||
+             mt_shape_flip(l->shape) == mt_shape_reverse_orientation(l->shape)))
             any_dir = mt_shape_sample_from_pdf(l->shape, p, u1, u2, &ns, &ps, &pdf);
         else
             ps = mt_shape_set_sample_from(l->shape, p, ucomp, u1, u2, &ns);

@@ -52,4 +52,14 @@ mt_rgb mt__sample_one_light(mt__thread_ctx *tc, const mt__vertex *v, int vertex,
  * 9 + 3j, 10 + 3j for light j, as arrays). */
 mt_rgb mt__sample_all_lights(mt__thread_ctx *tc, const mt__vertex *v, int vertex);
 
+/* The ray differentials of a specular bounce (pbrt-v2 SpecularReflect,
+ * SpecularTransmit): rd the incoming ray, dg the intersection (its dpdx,
+ * dpdy), dgs the BSDF's shading geometry (dndu, dndv, and the surface's
+ * dudx...), p and n its point and normal, wo = -rd's direction, wi the
+ * specular direction, eta the BSDF's; into next's rx/ry (has_differentials 0
+ * where they are not finite). */
+void mt__specular_differentials(const mt_raydiff *rd, const mt_diffgeom *dg, const mt_diffgeom *dgs,
+                                mt_vec3 p, mt_vec3 n, mt_vec3 wo, mt_vec3 wi, int transmit,
+                                mt_real eta, mt_raydiff *next);
+
 #endif

@@ -10,15 +10,17 @@
  *   cylinder light has the wrong density (under Scale 2 four times too
  *   high: the light comes out four times too dark); corrected: the world
  *   density 1 / (Area() dA_world/dA_object) at the point.
- * - shapeset-hit (MT_FIX_SHAPESET_HIT): ShapeSet::Sample moves the sample
- *   to a point of the ray from p through it -- "the closest intersection",
- *   says its comment, but every primitive overwrites the hit of the one
- *   before, so it is the last primitive met in index order, which the
- *   shadow ray then finds hidden behind the nearer ones -- and Shape::Pdf
- *   counts only the first point of a primitive along a direction, while
- *   ShapeSet brings every sample on that ray to one point; corrected: the
- *   closest point, and the pdf of a direction sums over every point of the
- *   set along it (the density of the directions ShapeSet produces).
+ * - shapeset-hit (MT_FIX_SHAPESET_HIT): pbrt-v2 as released (df276f5)
+ *   leaves ShapeSet::Sample's point where the primitive's Sample put it,
+ *   with that primitive's normal, while ShapeSet::Pdf(p, wi) adds up the
+ *   density of every primitive the direction meets: a sample on a primitive
+ *   hidden behind another of the set is blocked by it, so a closed mesh
+ *   light seen from outside gives only p_front / (p_front + p_back) of its
+ *   light. (The 2012 snapshot moved the sample to the last primitive the
+ *   ray met in index order.) Corrected: the sample moves to the closest
+ *   point of the set on the ray from p through it, and the pdf of a
+ *   direction sums over every point of the set along it (the density of
+ *   the directions that sampling produces).
  */
 #include "core/alloc.h"
 #include "tracer/shape_impl.h"
@@ -147,23 +149,24 @@ mt_vec3 mt_shape_set_sample_from(const mt_shape *s, mt_vec3 p, mt_real ucomp, mt
 {
     uint32_t n = mt__shape_nprims(s), i;
     mt_vec3 pt = mt_shape_sample_from(s, pick_prim(s, ucomp), p, u1, u2, ns);
-    mt_ray r = mt_ray_make(p, mt_v3_sub(pt, p), (mt_real)1e-3, MT_RAY_TMAX);
-    mt_real thit = 1;
+    mt_ray r;
     mt_hit hit, last;
     int any = 0;
-    /* pbrt-v2 ShapeSet::Sample: each primitive is intersected with the same
-     * unbounded ray, and the last one hit (not the closest) gives the point
-     * and the normal. Corrected (shapeset-hit): the ray shortens to each hit,
-     * so the closest one is kept. */
+    /* pbrt-v2 ShapeSet::Sample as released (df276f5): the primitive's own
+     * sample, no re-intersection */
+    if (!(s->mode & MT_FIX_SHAPESET_HIT)) return pt;
+    /* corrected (shapeset-hit): the closest point of the set on the ray
+     * from p through the sample, with its normal */
+    r = mt_ray_make(p, mt_v3_sub(pt, p), (mt_real)1e-3, MT_RAY_TMAX);
     for (i = 0; i < n; ++i)
         if (mt_shape_intersect(s, i, &r, &hit)) {
             last = hit;
-            thit = hit.t;
             any = 1;
-            if (s->mode & MT_FIX_SHAPESET_HIT) r.tmax = hit.t;
+            r.tmax = hit.t;
         }
-    if (any) *ns = mt_hit_normal(&last, &r);
-    return mt_ray_at(&r, thit);
+    if (!any) return pt;
+    *ns = mt_hit_normal(&last, &r);
+    return mt_ray_at(&r, last.t);
 }
 
 int mt_shape_sample_from_pdf(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2, mt_vec3 *ns,

@@ -280,9 +280,10 @@ int mt__sphere_area_sampled(const mt_shape *s)
  * quadric-scale fixed, pbrt-v2 never samples this way). It is moved to the
  * first point of the shape on the ray from p through it, and the pdf of a
  * direction sums over every point of the shape along it (mt_shape_pdf_from),
- * whatever shapeset-hit says: the two must go together, and ShapeSet's
- * re-intersection under a mirroring transform moves the sample anyway, so
- * leaving a hidden sample where it is would be right only without a mirror. */
+ * whatever shapeset-hit says: the two must go together, and corrected
+ * mode's ShapeSet re-intersection under a mirroring transform moves the
+ * sample anyway, so leaving a hidden sample where it is would be right only
+ * without a mirror. */
 static mt_vec3 area_sample_from(const mt_shape *s, mt_vec3 p, mt_real u1, mt_real u2,
                                 mt_vec3 *ns)
 {
