@@ -155,6 +155,8 @@ CONF_LIB  := $(BUILD)/obj/libconformance.a
 CONF_BIN  := $(BUILD)/bin/materia-conformance
 # a deliberately wrong protocol implementation, for tests/test_impl.c
 IMPL_WRONG := $(BUILD)/tests/impl-wrong
+# a material system other than pbrt-v2's behind the protocol, for tests/test_impl.c
+IMPL_OTHER := $(BUILD)/tests/impl-other
 # the fuzz targets with driver.c (make check runs each over its corpus)
 FUZZ_BINS := $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz-%)
 FUZZ_SUP  := $(BUILD)/obj/fuzz/fuzz_util.o
@@ -191,7 +193,7 @@ FLAGS_STAMP := $(BUILD)/flags
 all: lib tools $(CONF_BIN)
 lib: $(STATIC_LIB) $(SHARED_LIB)
 tools: $(TOOLS)
-tests: $(TESTS) $(CONF_BIN) $(IMPL_WRONG) $(FUZZ_BINS)
+tests: $(TESTS) $(CONF_BIN) $(IMPL_WRONG) $(IMPL_OTHER) $(FUZZ_BINS)
 benches: $(BENCHES)
 tradeoffs: $(TRADEOFFS)
 
@@ -240,6 +242,10 @@ $(BUILD)/bin/materia-conformance: $(CONF_OBJ) $(TSUP_OBJ) $(STATIC_LIB)
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(LTO_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(ALL_LDFLAGS) -o $@ $< $(LTO_LIB) $(MT_LDLIBS) $(LDLIBS)
+
+$(IMPL_OTHER): $(BUILD)/obj/tests/impl_other.o
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< -lm
 
 $(IMPL_WRONG): $(BUILD)/obj/tests/impl_wrong.o $(STATIC_LIB)
 	@mkdir -p $(dir $@)

@@ -198,6 +198,10 @@ static const cf_subject subjects[] = {
     {"glass eta=4", "specular_transmission", b_glass, {4, 1}, EXACT | DELTA | BOTH, 1, 0, NULL},
     {"glass eta=1/1.5", "specular_transmission", b_glass, {1 / 1.5, 1}, EXACT | DELTA | BOTH, 1, 0, NULL},
     {"specular_transmission alone eta=1.5", "specular_transmission", b_glass, {1.5, 0}, LE1 | DELTA | BOTH, 0, 0, NULL},
+    /* materia's radiance-transmission option: the energy, Helmholtz and
+     * reciprocity in the radiance form */
+    {"glass eta=1.5 (radiance transport)", "specular_transmission", b_glass, {1.5, 1}, EXACT | DELTA | BOTH | CF_RADIANCE_OPT, 1, 0, NULL},
+    {"glass eta=4 (radiance transport)", "specular_transmission", b_glass, {4, 1}, EXACT | DELTA | BOTH | CF_RADIANCE_OPT, 1, 0, NULL},
     {"microfacet blinn e=0.5 noop", "microfacet", b_microfacet, {0, 0.5, 0, 0}, LE1, 0, 0.5, NULL},
     {"microfacet blinn e=1 noop", "microfacet", b_microfacet, {0, 1, 0, 0}, LE1, 0, 1, NULL},
     {"microfacet blinn e=10 noop", "microfacet", b_microfacet, {0, 10, 0, 0}, LE1, 0, 10, NULL},
@@ -232,17 +236,4 @@ const cf_subject *cf_subjects(int *count)
 {
     *count = (int)(sizeof subjects / sizeof subjects[0]);
     return subjects;
-}
-
-int cf_wo_set(const cf_subject *s, mt_vec3 *wo, int max)
-{
-    /* near-normal, two intermediate, near-grazing; below too when two-sided */
-    static const double cosines[] = {0.9999, 0.7, 0.3, 0.03};
-    int n = 0, i, sides = (s->flags & CF_TWO_SIDED) ? 2 : 1, side;
-    for (side = 0; side < sides; ++side)
-        for (i = 0; i < 4 && n < max; ++i) {
-            double c = cosines[i], sn = sqrt(1 - c * c), phi = 0.7 + 1.3 * i;
-            wo[n++] = mt_v3((mt_real)(sn * cos(phi)), (mt_real)(sn * sin(phi)), (mt_real)(side ? -c : c));
-        }
-    return n;
 }

@@ -20,8 +20,9 @@ enum {
     CF_NO_CHI2 = 1 << 3,       /* only delta lobes: no density to test */
     CF_TWO_SIDED = 1 << 4,     /* test wo below the surface too */
     CF_FURNACE_LE = 1 << 5,    /* rho <= expect_rho (a documented bound) */
-    CF_SHADING_GAP = 1 << 6    /* shading normal != geometric normal: f may be > 0 where
+    CF_SHADING_GAP = 1 << 6,   /* shading normal != geometric normal: f may be > 0 where
                                   the pdf is 0 (reported, not an error) */
+    CF_RADIANCE_OPT = 1 << 7       /* built with the radiance-transmission option (radiance transport) */
 };
 
 struct cf_subject {
@@ -64,12 +65,14 @@ typedef struct cf_config {
 typedef enum { CF_PASS, CF_FAIL, CF_XFAIL, CF_SKIP, CF_INFO } cf_verdict;
 
 typedef struct cf_row {
-    char subject[96];
+    char subject[128];
     char mode[16];
     char check[24];
-    char statistic[128];
+    char kind[12];      /* "physics" or "agreement" */
+    char statistic[200];
     char bound[64];
-    char note[256];
+    char note[400];
+    char detail[1400];  /* lines printed under a failed row (its direction, cells, worst queries) */
     cf_verdict verdict;
 } cf_row;
 
@@ -79,40 +82,22 @@ typedef struct cf_rows {
 } cf_rows;
 
 void cf_rows_add(cf_rows *r, const cf_row *row);
+/* One line per row: verdict, configuration, mode, check, kind, statistic,
+ * bound, note; a failed row's detail under it. */
 void cf_rows_print(const cf_rows *r);
 void cf_rows_free(cf_rows *r);
+int cf_rows_count(const cf_rows *r, cf_verdict v, const char *kind);
+const char *cf_verdict_name(cf_verdict v);
 
-/* The outcome of one check of a subject in one mode, before reporting. */
-typedef struct cf_result {
-    int ok;
-    double stat;          /* the measured statistic (the worst over wo) */
-    char statistic[128];  /* formatted */
-    char bound[64];
-} cf_result;
-
-/* ---- checks (each returns ok, and fills the formatted statistic) --------- */
-typedef struct cf_sample_report {
-    cf_result identity, chi2, integral, furnace_mc, furnace_bound;
-    double rho_min, rho_max; /* quadrature reflectance over the wo tested */
-    int has_density;
-} cf_sample_report;
-
-/* Sampling, chi-square, pdf integral and furnace for every wo of the set. */
-mt_status cf_sampling_checks(const cf_subject *s, mt_mode mode, const cf_config *cfg,
-                             cf_sample_report *rep, mt_error *err);
-mt_status cf_reciprocity(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
-mt_status cf_helmholtz(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
-mt_status cf_extremes(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err);
-
-/* The chi-square over the whole sphere, shared by the suite and --impl:
- * the cell of a direction (nphi x nz cells, equal area), the integral over
- * cell c of a 7-component integrand (pdf, f |cos| rgb, f |cos| where the pdf
- * is 0 rgb) starting from a grid as fine as the cell's share of the n
- * samples asks (count of them fell in it), and the test itself. */
+/* ---- the equal-area grid of the sphere --------------------------------------
+ * The cells the chi-square used before its cells were laid where a pilot
+ * sample falls (cells.c): nphi x nz cells of equal area. tradeoff/power.c
+ * measures the power of such grids. */
 int cf_cell_of(const cf_config *cfg, mt_vec3 w);
 mt_status cf_integrate_cell(mt_cubature_fn f, void *ctx, const cf_config *cfg, int c, long count, long n,
                             double abs_tol, double out[7], double *err_pdf, mt_error *err);
-/* The integrand for a BSDF: wo, with the components of flags. */
+/* The integrand for a BSDF: wo, with the components of flags: pdf, f |cos|
+ * rgb, f |cos| where the pdf is 0 rgb. */
 typedef struct cf_bsdf_pass {
     const mt_bsdf *bsdf;
     mt_vec3 wo;
@@ -128,9 +113,14 @@ typedef struct cf_chi2 {
     double hard_count;
     int hard_cell;
 } cf_chi2;
-/* counts[c] samples in cell c of expected probability pdfc[c]; of n samples
- * in_cells landed in cells, the others (failed or delta) are one more cell
- * of probability 1 - integral. */
+/* counts[c] samples in cell c of expected probability pdfc[c] (ncell
+ * cells); of n samples in_cells landed in cells, the others (failed or
+ * delta) are one more cell of probability 1 - integral. Cells below 5
+ * expected are pooled; a sample in a cell of probability 0 is a hard
+ * failure (p = -1). */
+void cf_chi2_counts(int ncell, const long *counts, const double *pdfc, long n, long in_cells, double integral,
+                    cf_chi2 *out);
+/* The same over the grid of cfg (nphi x nz cells). */
 void cf_chi2_cells(const cf_config *cfg, const long *counts, const double *pdfc, long n, long in_cells,
                    double integral, cf_chi2 *out);
 
@@ -142,8 +132,11 @@ void cf_furnace_table(cf_rows *rows);
 void cf_extreme_grid(cf_rows *rows);
 void cf_rejects_invalid(cf_rows *rows);
 
-/* The directions wo a subject is tested from. */
-int cf_wo_set(const cf_subject *s, mt_vec3 *wo, int max);
+
+/* The statistical tests of the suite's own run (both modes, every subject;
+ * full: 1 --full, -1 --lite, 0 the default), as its Sidak correction counts
+ * them. */
+long cf_suite_tests(int full);
 
 /* The measured size of each BxDF/BSDF erratum (--errata). */
 int cf_errata_report(void);

@@ -42,7 +42,7 @@ static const cf_impl_config configs[] = {
       "Material \"matte\" \"texture bumpmap\" \"w\" \"rgb Kd\" [.9 .9 .9]", "at p 0.3 0.7 0.1"}, LE1 | GAP, 0},
     /* plastic: Lambertian + Blinn microfacet, dielectric Fresnel */
     {"plastic default", {"Material \"plastic\""}, LE1 | Q, 10},
-    {"plastic roughness=0.001", {"Material \"plastic\" \"rgb Kd\" [.3 .3 .3] \"rgb Ks\" [.5 .5 .5] \"float roughness\" [.001]"}, LE1, 1000},
+    {"plastic roughness=0.001", {"Material \"plastic\" \"rgb Kd\" [.3 .3 .3] \"rgb Ks\" [.5 .5 .5] \"float roughness\" [.001]"}, LE1 | Q, 1000},
     {"plastic roughness=1", {"Material \"plastic\" \"rgb Kd\" [.3 .3 .3] \"rgb Ks\" [.5 .5 .5] \"float roughness\" [1]"}, LE1, 1},
     {"plastic Kd=1 Ks=1 r=0.3 (additive)", {"Material \"plastic\" \"rgb Kd\" [1 1 1] \"rgb Ks\" [1 1 1] \"float roughness\" [.3]"}, 0, 3.4},
     {"plastic textured roughness", {CHECKS("r", ".01", ".3"), "Material \"plastic\" \"texture roughness\" \"r\"", "at uv 0.3 0.3"}, LE1, 100},

@@ -32,65 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "impl.h"
-
-void cf_measure_add(cf_impl_result *r, double s, double se, double sys, double at, const char *what)
-{
-    cf_measure *m = &r->m;
-    if (m->oom) return;
-    if (m->n == m->cap) {
-        int cap = m->cap ? 2 * m->cap : 16;
-        cf_unit *u = realloc(m->u, (size_t)cap * sizeof *u);
-        if (!u) {
-            m->oom = 1;
-            return;
-        }
-        m->u = u;
-        m->cap = cap;
-    }
-    m->u[m->n].s = s;
-    m->u[m->n].se = se;
-    m->u[m->n].sys = sys;
-    m->u[m->n].at = at;
-    m->u[m->n++].what = what;
-}
-
-void cf_measure_hist(cf_impl_result *r, const long *counts, int ncell, long other, double at)
-{
-    cf_measure *m = &r->m;
-    if (m->oom) return;
-    if (m->nhist && m->bins != ncell + 1) {
-        m->oom = 1;
-        return;
-    }
-    if (m->nhist == m->cap_hist) {
-        int cap = m->cap_hist ? 2 * m->cap_hist : 8;
-        long *h = realloc(m->hist, (size_t)cap * (size_t)(ncell + 1) * sizeof *h);
-        double *a = h ? realloc(m->hist_at, (size_t)cap * sizeof *a) : NULL;
-        if (h) m->hist = h;
-        if (!a) {
-            m->oom = 1;
-            return;
-        }
-        m->hist_at = a;
-        m->cap_hist = cap;
-    }
-    m->bins = ncell + 1;
-    memcpy(m->hist + (size_t)m->nhist * (size_t)m->bins, counts, (size_t)ncell * sizeof *counts);
-    m->hist[(size_t)m->nhist * (size_t)m->bins + (size_t)ncell] = other;
-    m->hist_at[m->nhist++] = at;
-}
-
-void cf_impl_results_free(cf_impl_result res[CK_NCHECK])
-{
-    int k;
-    for (k = 0; k < CK_NCHECK; ++k) {
-        free(res[k].m.u);
-        free(res[k].m.hist);
-        free(res[k].m.hist_at);
-        memset(&res[k].m, 0, sizeof res[k].m);
-    }
-}
+#include "core.h"
 
 /* The two-sample chi-square of two histograms with the same total: p. Bins
  * whose two counts add to less than 10 (5 expected in each) are pooled. */
@@ -117,13 +59,14 @@ static double homogeneity_p(const long *a, const long *b, int bins)
     return used > 1 ? cf_chi2_pvalue(chi2, (double)(used - 1)) : 1;
 }
 
-int cf_impl_same_failure(const cf_impl_run *run, const cf_impl_result *test, const cf_impl_result *mine, char *note,
-                         size_t n)
+int cf_same_failure(double alpha_test, const cf_result *test, const cf_result *mine, char *note, size_t n)
 {
     const cf_measure *a = &test->m, *b = &mine->m;
-    double z = cf_normal_two_sided_z(run->cfg.alpha_test), worst = 0, min_p = 2;
+    double z = cf_normal_two_sided_z(alpha_test), worst = 0, min_p = 2;
     int i, wu = -1, wh = -1;
-    if (a->oom || b->oom || a->n != b->n || a->nhist != b->nhist || (a->nhist && a->bins != b->bins)) {
+    size_t at = 0;
+    if (a->oom || b->oom || a->n != b->n || a->nhist != b->nhist ||
+        (a->nhist && memcmp(a->hist_bins, b->hist_bins, (size_t)a->nhist * sizeof *a->hist_bins))) {
         snprintf(note, n, "materia fails it too in pbrt-v2 mode, but what it measured cannot be set against materia's");
         return 0;
     }
@@ -142,13 +85,14 @@ int cf_impl_same_failure(const cf_impl_run *run, const cf_impl_result *test, con
         }
     }
     for (i = 0; i < a->nhist; ++i) {
-        double p = homogeneity_p(a->hist + (size_t)i * (size_t)a->bins, b->hist + (size_t)i * (size_t)b->bins, a->bins);
+        double p = homogeneity_p(a->hist + at, b->hist + at, a->hist_bins[i]);
+        at += (size_t)a->hist_bins[i];
         if (p < min_p) {
             min_p = p;
             wh = i;
         }
     }
-    if (worst <= 1 && min_p >= run->cfg.alpha_test) {
+    if (worst <= 1 && min_p >= alpha_test) {
         char same[96] = "identical measures";
         if (worst > 0) snprintf(same, sizeof same, "differences at most %.2g of their tolerance", worst);
         if (wh >= 0)

@@ -1,125 +1,25 @@
 /*
- * Checks evaluated pair by pair: reciprocity, Helmholtz reciprocity and the
- * refraction round trip for specular transmission, the light-leak rule, the
- * normalization of the microfacet distributions and the rejection of invalid
- * parameters.
+ * Checks that are not per configuration: the light-leak rule with a tilted
+ * geometric normal, the normalization of the microfacet distributions,
+ * CONFORMANCE.md's furnace table and the rejection of invalid parameters.
+ * (Reciprocity and Helmholtz are the core's, per configuration: pairs.c,
+ * delta.c.)
  */
 #include <float.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include "conformance.h"
-#include "support/check.h"
 
 #if MT_USE_DOUBLE
-#define RECIP_TOL 1e-12
 #define EPS DBL_EPSILON
 #else
-#define RECIP_TOL 1e-6
 #define EPS FLT_EPSILON
 #endif
 
 static mt_vec3 random_dir(mt_rng *r)
 {
     return mt_uniform_sample_sphere(mt_rng_uniform(r), mt_rng_uniform(r));
-}
-
-static double reldiff(double a, double b)
-{
-    double m = fmax(fabs(a), fabs(b));
-    return m > 0 ? fabs(a - b) / m : 0;
-}
-
-mt_status cf_reciprocity(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err)
-{
-    mt_arena *a = mt_arena_create(0);
-    mt_bsdf *b;
-    mt_rng rng;
-    mt_status st;
-    double worst = 0, ulps = 0;
-    int i, k, nonzero = 0;
-    if (!a) return mt_error_set(err, MT_ERR_NOMEM, "out of memory");
-    if ((st = s->build(s, a, mode, &b, err))) {
-        mt_arena_destroy(a);
-        return st;
-    }
-    mt_rng_seed(&rng, 1234, 5);
-    for (i = 0; i < 20000; ++i) {
-        mt_vec3 wo = random_dir(&rng), wi = random_dir(&rng);
-        mt_rgb f1 = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL), f2 = mt_bsdf_f(b, wi, wo, MT_BSDF_ALL);
-        for (k = 0; k < 3; ++k) {
-            double r = reldiff(f1.c[k], f2.c[k]);
-            nonzero += f1.c[k] != 0;
-            if (r > worst) {
-                worst = r;
-                ulps = t_ulps(f1.c[k], f2.c[k]);
-            }
-        }
-    }
-    mt_arena_destroy(a);
-    res->ok = worst <= RECIP_TOL;
-    res->stat = worst;
-    snprintf(res->statistic, sizeof res->statistic, "max rel %.2g (%.0f ulps) over %d values", worst,
-             ulps, nonzero);
-    snprintf(res->bound, sizeof res->bound, "rel <= %g", RECIP_TOL);
-    return MT_OK;
-}
-
-/* Specular transmission: the round trip T(T(w)) = w, and the symmetry of the
- * weights in the form the mode uses (pbrt-v2's w(o->i) = w(i->o), or with the
- * radiance option w(o->i) (eta_i/eta_o)^2 = w(i->o) (eta_o/eta_i)^2). */
-mt_status cf_helmholtz(const cf_subject *s, mt_mode mode, cf_result *res, mt_error *err)
-{
-    const unsigned tflags = MT_BSDF_TRANSMISSION | MT_BSDF_SPECULAR;
-    int pass_, i, tested = 0;
-    double worst_w = 0, worst_dir = 0; /* in units of the pair's own tolerance */
-    for (pass_ = 0; pass_ < 2; ++pass_) {
-        mt_mode m = pass_ ? (mode | MT_OPT_RADIANCE_TRANSMISSION) : mode;
-        mt_arena *a = mt_arena_create(0);
-        mt_bsdf *b;
-        mt_rng rng;
-        mt_status st;
-        mt_real eta;
-        if (!a) return mt_error_set(err, MT_ERR_NOMEM, "out of memory");
-        if ((st = s->build(s, a, m, &b, err))) {
-            mt_arena_destroy(a);
-            return st;
-        }
-        eta = mt_bsdf_eta(b);
-        mt_rng_seed(&rng, 99, 1);
-        for (i = 0; i < 4000; ++i) {
-            mt_vec3 wo = random_dir(&rng);
-            mt_bsdf_sample t1 = mt_bsdf_sample_f(b, wo, 0.5f, 0.5f, 0.5f, tflags), t2;
-            double w1, w2, eo, ei, cmin, tol;
-            if (t1.pdf == 0) continue;
-            t2 = mt_bsdf_sample_f(b, t1.wi, 0.5f, 0.5f, 0.5f, tflags);
-            if (t2.pdf == 0) continue;
-            tested++;
-            /* Snell's law is ill-conditioned near grazing refraction: an error
-             * e in cos on one side is e (eta cos / cos')^2 on the other, and
-             * (1 - F) / cos' shares it; the tolerance follows the pair */
-            cmin = fmin(fabs(wo.z), fabs(t1.wi.z));
-            tol = 64 * EPS * fmax(eta * eta, 1 / (eta * eta)) / fmax(cmin * cmin, 1e-12);
-            worst_dir = fmax(worst_dir, mt_v3_len(mt_v3_sub(t2.wi, wo)) / tol);
-            w1 = t1.f.c[0] * fabs(t1.wi.z) / t1.pdf;
-            w2 = t2.f.c[0] * fabs(wo.z) / t2.pdf;
-            eo = wo.z > 0 ? 1 : eta; /* the index on each side */
-            ei = wo.z > 0 ? eta : 1;
-            if (pass_) {
-                w1 *= (ei / eo) * (ei / eo);
-                w2 *= (eo / ei) * (eo / ei);
-            }
-            worst_w = fmax(worst_w, reldiff(w1, w2) / tol);
-        }
-        mt_arena_destroy(a);
-    }
-    res->stat = fmax(worst_w, worst_dir);
-    res->ok = tested > 0 && worst_w <= 1 && worst_dir <= 1;
-    snprintf(res->statistic, sizeof res->statistic,
-             "err/tol: weights %.2g, |T(T(w)) - w| %.2g over %d pairs (both forms)", worst_w, worst_dir,
-             tested);
-    snprintf(res->bound, sizeof res->bound, "<= 1 (64 eps cond.)");
-    return MT_OK;
 }
 
 static void row(cf_rows *rows, const char *subject, const char *mode, const char *check, int ok,

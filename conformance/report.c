@@ -1,4 +1,4 @@
-/* The suite's table: one row per configuration and check. */
+/* The suite's table: one row per configuration, mode and check. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +19,7 @@ void cf_rows_add(cf_rows *r, const cf_row *row)
     r->rows[r->n++] = *row;
 }
 
-static const char *verdict_name(cf_verdict v)
+const char *cf_verdict_name(cf_verdict v)
 {
     switch (v) {
     case CF_PASS: return "PASS";
@@ -36,10 +36,19 @@ void cf_rows_print(const cf_rows *r)
     int i;
     for (i = 0; i < r->n; ++i) {
         const cf_row *x = &r->rows[i];
-        printf("%-5s %-50s %-9s %-14s %-62s %-18s%s%s\n", verdict_name(x->verdict), x->subject, x->mode,
-               x->check, x->statistic, x->bound, x->note[0] ? " " : "", x->note);
+        printf("%-5s %-50s %-9s %-15s %-9s %-62s %-18s%s%s\n", cf_verdict_name(x->verdict), x->subject, x->mode,
+               x->check, x->kind[0] ? x->kind : "physics", x->statistic, x->bound, x->note[0] ? " " : "", x->note);
+        if (x->detail[0]) fputs(x->detail, stdout);
     }
     fflush(stdout);
+}
+
+int cf_rows_count(const cf_rows *r, cf_verdict v, const char *kind)
+{
+    int i, n = 0;
+    for (i = 0; i < r->n; ++i)
+        n += r->rows[i].verdict == v && (!kind || !strcmp(r->rows[i].kind[0] ? r->rows[i].kind : "physics", kind));
+    return n;
 }
 
 void cf_rows_free(cf_rows *r)

@@ -1,24 +1,40 @@
 #!/usr/bin/env python3
-"""A small implementation of three of pbrt-v2's materials -- matte (Lambertian
-or Oren-Nayar), plastic (Lambertian plus a Blinn microfacet lobe) and mirror
-(specular reflection) -- written from pbrt-v2's formulas (reflection.h/.cpp,
-montecarlo.cpp, matte.cpp, plastic.cpp, mirror.cpp), independent of materia,
-in double precision. It speaks materia's query protocol (docs/PROTOCOL.md) on
-standard input and output, so that materia-conformance --impl, materia-lobe
---impl and the conformance vectors can check it.
+"""A small implementation of four of pbrt-v2's materials -- matte (Lambertian
+or Oren-Nayar), plastic (Lambertian plus a Blinn microfacet lobe), mirror
+(specular reflection) and glass (specular reflection and transmission) --
+written from pbrt-v2's formulas (reflection.h/.cpp, montecarlo.cpp, matte.cpp,
+plastic.cpp, mirror.cpp, glass.cpp), independent of materia, in double
+precision. It speaks materia's query protocol (docs/PROTOCOL.md) on standard
+input and output, so that materia-conformance --impl, materia-lobe --impl and
+the conformance vectors can check it.
 
-    python3 examples/pbrt_materials.py [--bug NAME]
+    python3 examples/pbrt_materials.py [--bug NAME] [--transport importance|radiance]
+        [--sample-numbers 3|2] [--declare-transport T] [--declare-sample-numbers N]
 
 --bug plants a deliberate error (see BUGS) to show what the checks report.
+--transport and --sample-numbers choose the conventions it follows (the
+`conventions` query declares them; docs/PROTOCOL.md):
+  importance      pbrt-v2's specular transmission, weight (1 - F) T (default)
+  radiance        pbrt-v3's radiance mode: that weight times (eta_i / eta_t)^2,
+                  eta_i the index on wo's side
+  3               pbrt-v2's BSDF::Sample_f: uc chooses the component, u1 and u2
+                  its direction (default)
+  2               pbrt-v3's: uc chooses, then uc * n - (its index) is the
+                  component's first number, u1 its second; u2 is unused
+--declare-transport and --declare-sample-numbers make it declare something
+other than what it does: a lie the conformance suite must catch.
 Only what these materials need is implemented: "Material" statements with
 rgb/color/float parameters, the protocol's query lines; rho and texture are
 answered with an error, bssrdf with none.
 """
 import math
+import os
 import struct
 import sys
 
-PROTOCOL = 1
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import query_protocol as qp  # noqa: E402 (the protocol's lines: examples/query_protocol.py)
+
 INV_PI = 1 / math.pi
 
 BUGS = {
@@ -27,6 +43,10 @@ BUGS = {
     "colour": "the green channel of every f 3% low (a delta lobe's weight too)",
 }
 BUG = None
+
+# its conventions: what it does, and what it declares (the same unless told)
+TRANSPORT, SAMPLE_NUMBERS = "importance", 3
+DECLARED = {}
 
 REFLECTION, TRANSMISSION, DIFFUSE, GLOSSY, SPECULAR = 1, 2, 4, 8, 16
 
@@ -43,15 +63,6 @@ def cross(a, b):
 def normalize(a):
     l = math.sqrt(dot(a, a))
     return (a[0] / l, a[1] / l, a[2] / l)
-
-
-def admit(v):
-    """The protocol's rule: unit (to 1e-3 in the square) as given, else normalized;
-    a zero or non-finite direction is refused (None)."""
-    if not all(math.isfinite(c) for c in v) or v == (0.0, 0.0, 0.0):
-        return None
-    l2 = dot(v, v)
-    return v if 0.999 < l2 < 1.001 else normalize(v)
 
 
 def abs_cos(w):
@@ -207,12 +218,8 @@ class BlinnMicrofacet:
         return wi, self.f(wo, wi), pdf
 
 
-class SpecularMirror:
-    """SpecularReflection with FresnelNoOp (mirror.cpp)."""
-    type = REFLECTION | SPECULAR
-
-    def __init__(self, r):
-        self.r = r
+class Delta:
+    """A delta lobe: f and pdf are 0, only sample_f carries energy."""
 
     def f(self, wo, wi):
         return [0.0, 0.0, 0.0]
@@ -220,19 +227,56 @@ class SpecularMirror:
     def pdf(self, wo, wi):
         return 0.0
 
+
+class SpecularReflection(Delta):
+    """SpecularReflection with FresnelDielectric(eta_i, eta_t) (glass.cpp), or
+    with FresnelNoOp when eta_i is None (mirror.cpp)."""
+    type = REFLECTION | SPECULAR
+
+    def __init__(self, r, eta_i=None, eta_t=None):
+        self.r, self.eta_i, self.eta_t = r, eta_i, eta_t
+
     def sample_f(self, wo, u1, u2):
         wi = (-wo[0], -wo[1], wo[2])
         if wi[2] == 0:
             # pbrt-v2 divides by |cos theta| = 0 here; the sample fails, as in
             # materia (erratum grazing-division, fixed in both modes)
             return wi, [0.0, 0.0, 0.0], 0.0
-        return wi, [c / abs_cos(wi) for c in self.r], 1.0
+        fr = 1.0 if self.eta_i is None else fresnel_dielectric(wo[2], self.eta_i, self.eta_t)
+        return wi, [fr * c / abs_cos(wi) for c in self.r], 1.0
+
+
+class SpecularTransmission(Delta):
+    """pbrt-v2's SpecularTransmission (reflection.cpp): refraction by Snell's
+    law, weight (1 - F) T; in the radiance convention times (eta_i/eta_t)^2,
+    which pbrt-v2 leaves commented out (materia's erratum
+    specular-transmission-eta2) and pbrt-v3 applies in radiance mode."""
+    type = TRANSMISSION | SPECULAR
+
+    def __init__(self, t, eta_i, eta_t):
+        self.t, self.eta_i, self.eta_t = t, eta_i, eta_t
+
+    def sample_f(self, wo, u1, u2):
+        entering = wo[2] > 0
+        ei, et = (self.eta_i, self.eta_t) if entering else (self.eta_t, self.eta_i)
+        eta = ei / et
+        sint2 = eta * eta * max(0.0, 1 - wo[2] * wo[2])
+        if sint2 >= 1:  # total internal reflection: no sample
+            return wo, [0.0, 0.0, 0.0], 0.0
+        cost = math.sqrt(max(0.0, 1 - sint2))
+        wi = (-eta * wo[0], -eta * wo[1], -cost if entering else cost)
+        if wi[2] == 0:
+            return wi, [0.0, 0.0, 0.0], 0.0
+        w = 1 - fresnel_dielectric(wo[2], self.eta_i, self.eta_t)
+        if TRANSPORT == "radiance":
+            w *= (ei * ei) / (et * et)
+        return wi, [w * c / abs_cos(wi) for c in self.t], 1.0
 
 
 # ---- the BSDF (pbrt-v2 reflection.cpp BSDF) -------------------------------------
 class BSDF:
     def __init__(self, n, ng, dpdu, bxdfs, corrected):
-        nn = admit(n)
+        nn = qp.admit(n)
         sn = dpdu
         if corrected:  # erratum bsdf-frame: dpdu made perpendicular to n
             d = dot(nn, sn)
@@ -282,6 +326,10 @@ class BSDF:
         which = min(int(uc * n), n - 1)
         b = self.bxdfs[which]
         wo = self.to_local(wo_w)
+        if SAMPLE_NUMBERS == 2:
+            # pbrt-v3's BSDF::Sample_f: uc, rescaled to [0, 1) within the chosen
+            # component's stratum, is its first number; u2 is not used
+            u1, u2 = min(uc * n - which, 1 - 2.0 ** -53), u1
         wi, f, pdf = b.sample_f(wo, u1, u2)
         if pdf == 0:
             return None
@@ -308,6 +356,7 @@ DEFAULTS = {
     "matte": {"Kd": [0.5] * 3, "sigma": 0.0},
     "plastic": {"Kd": [0.25] * 3, "Ks": [0.25] * 3, "roughness": f32(0.1)},
     "mirror": {"Kr": [f32(0.9)] * 3},
+    "glass": {"Kr": [1.0] * 3, "Kt": [1.0] * 3, "index": 1.5},
 }
 
 
@@ -325,7 +374,12 @@ def make_bxdfs(kind, p, corrected):
         if BUG == "fresnel":
             eta_i, eta_t = eta_t, eta_i
         return [Lambertian(kd), BlinnMicrofacet(ks, 1 / p["roughness"], eta_i, eta_t, corrected)]
-    return [SpecularMirror(clamp(p["Kr"]))]
+    if kind == "glass":
+        # pbrt-v2 adds each lobe only when its colour is not black
+        kr, kt, e = clamp(p["Kr"]), clamp(p["Kt"]), p["index"]
+        return ([SpecularReflection(kr, 1.0, e)] if max(kr) > 0 else []) + \
+            ([SpecularTransmission(kt, 1.0, e)] if max(kt) > 0 else [])
+    return [SpecularReflection(clamp(p["Kr"]))]
 
 
 # ---- statements ----------------------------------------------------------------
@@ -356,18 +410,6 @@ def tokens(text):
     return out
 
 
-def incomplete(text):
-    depth, quote = 0, False
-    for c in text:
-        if c == '"':
-            quote = not quote
-        elif not quote and c == "[":
-            depth += 1
-        elif not quote and c == "]":
-            depth -= 1
-    return quote or depth > 0
-
-
 def parse_material(text):
     t = tokens(text)
     materials = []
@@ -379,7 +421,7 @@ def parse_material(text):
             raise ValueError("Material needs a quoted type")
         kind = t[i + 1][1]
         if kind not in DEFAULTS:
-            raise ValueError('material type "%s" is not one of this example\'s (matte, plastic, mirror)' % kind)
+            raise ValueError('material type "%s" is not one of this example\'s (matte, plastic, mirror, glass)' % kind)
         params = dict(DEFAULTS[kind])
         i += 2
         while i < len(t) and t[i][0] == "s":
@@ -422,69 +464,49 @@ def parse_material(text):
 
 # ---- the session -------------------------------------------------------------------
 class Session:
-    KEYS = {"p": 3, "n": 3, "ng": 3, "dpdu": 3, "dpdv": 3, "dndu": 3, "dndv": 3, "uv": 2,
-            "dpdx": 3, "dpdy": 3, "duvdx": 2, "duvdy": 2, "flip": 1}
-
     def __init__(self):
         self.corrected = False
         self.material = ("matte", dict(DEFAULTS["matte"]))
-        self.point = {"n": (0.0, 0.0, 1.0), "ng": (0.0, 0.0, 1.0), "dpdu": (1.0, 0.0, 0.0),
-                      "dpdv": (0.0, 1.0, 0.0)}
+        self.point = dict(qp.AT_DEFAULTS)
 
     def bsdf(self):
         kind, p = self.material
         pt = self.point
         return BSDF(pt["n"], pt["ng"], pt["dpdu"], make_bxdfs(kind, p, self.corrected), self.corrected)
 
-    @staticmethod
-    def numbers(args, n, what):
-        try:
-            v = [float(a) for a in args]
-        except ValueError:
-            v = []
-        if len(v) != n or not all(math.isfinite(x) for x in v):
-            raise ValueError(what)
-        return v
+    def statement(self, text):
+        self.material = parse_material(text)
+        return "ok"
 
     def query(self, word, args):
         if word == "version":
             if args:
                 raise ValueError("version: takes no arguments")
-            return "protocol %d pbrt_materials.py 0.1 precision double" % PROTOCOL
+            return "protocol %d pbrt_materials.py 0.1 precision double" % qp.PROTOCOL
+        if word == "conventions":
+            if args:
+                raise ValueError("conventions: takes no arguments")
+            return "transport %s sample-numbers %d" % (DECLARED.get("transport", TRANSPORT),
+                                                        DECLARED.get("sample-numbers", SAMPLE_NUMBERS))
         if word == "mode":
             if len(args) != 1 or args[0] not in ("pbrt-v2", "corrected"):
                 raise ValueError("mode: pbrt-v2 or corrected")
             self.corrected = args[0] == "corrected"
             return "ok"
         if word == "at":
-            new, i = dict(self.point), 0
-            if not args:
-                raise ValueError("at: give one or more keys")
-            while i < len(args):
-                k = args[i]
-                if k not in self.KEYS:
-                    raise ValueError('at: unknown key "%s"' % k)
-                v = self.numbers(args[i + 1:i + 1 + self.KEYS[k]], self.KEYS[k],
-                                 'at: "%s" needs %d finite numbers' % (k, self.KEYS[k]))
-                new[k] = tuple(v)
-                i += 1 + self.KEYS[k]
-            self.point = new
+            self.point = qp.at(self.point, args)
             return "ok"
         if word == "eval":
-            v = self.numbers(args, 6, "eval: needs wox woy woz wix wiy wiz")
-            wo, wi = admit(tuple(v[:3])), admit(tuple(v[3:]))
-            if wo is None or wi is None:
+            dirs = qp.eval_args(args)
+            if dirs is None:
                 return "0 0 0 0"
             b = self.bsdf()
-            return fmt(b.f(wo, wi) + [b.pdf(wo, wi)])
+            return fmt(b.f(*dirs) + [b.pdf(*dirs)])
         if word == "sample":
-            v = self.numbers(args, 6, "sample: needs wox woy woz uc u1 u2")
-            if not all(0 <= u < 1 for u in v[3:]):
-                raise ValueError("sample: uc, u1 and u2 must be in [0, 1)")
-            wo = admit(tuple(v[:3]))
-            s = self.bsdf().sample(wo, *v[3:]) if wo is not None else None
+            a = qp.sample_args(args)
+            s = self.bsdf().sample(*a) if a is not None else None
             if s is None:
-                return "0 0 0 0 0 0 0 0"
+                return qp.FAILED_SAMPLE
             wi, f, pdf, flags = s
             return fmt(list(wi) + f + [pdf]) + " %d" % flags
         if word == "shading":
@@ -499,49 +521,39 @@ def fmt(values):
     return " ".join("%.17g" % v for v in values)
 
 
-QUERIES = ("version", "mode", "at", "eval", "sample", "rho", "bssrdf", "shading", "texture")
+USAGE = ("usage: pbrt_materials.py [--bug %s] [--transport importance|radiance] [--sample-numbers 3|2]\n"
+         "       [--declare-transport importance|radiance] [--declare-sample-numbers 3|2]\n" % "|".join(BUGS))
+
+
+def options(args):
+    """Sets BUG and the conventions from the command line; False on a mistake."""
+    global BUG, TRANSPORT, SAMPLE_NUMBERS
+    choices = {"--bug": tuple(BUGS), "--transport": ("importance", "radiance"), "--sample-numbers": ("3", "2"),
+               "--declare-transport": ("importance", "radiance"), "--declare-sample-numbers": ("3", "2")}
+    seen = set()
+    for i in range(0, len(args), 2):
+        opt, val = args[i], args[i + 1] if i + 1 < len(args) else None
+        if opt not in choices or val not in choices[opt] or opt in seen:
+            return False
+        seen.add(opt)
+        if opt == "--bug":
+            BUG = val
+        elif opt == "--transport":
+            TRANSPORT = val
+        elif opt == "--sample-numbers":
+            SAMPLE_NUMBERS = int(val)
+        elif opt == "--declare-transport":
+            DECLARED["transport"] = val
+        else:
+            DECLARED["sample-numbers"] = int(val)
+    return True
 
 
 def main():
-    global BUG
-    args = sys.argv[1:]
-    if len(args) == 2 and args[0] == "--bug" and args[1] in BUGS:
-        BUG = args[1]
-    elif args:
-        sys.stderr.write("usage: pbrt_materials.py [--bug %s]\n" % "|".join(BUGS))
+    if not options(sys.argv[1:]):
+        sys.stderr.write(USAGE)
         return 2
-    s, pending = Session(), None
-    for line in sys.stdin:
-        line = line.rstrip("\r\n")
-        if pending is not None:
-            pending += "\n" + line
-            if incomplete(pending):
-                continue
-            text, pending = pending, None
-        else:
-            words = line.split()
-            if not words or words[0].startswith("#"):
-                continue
-            if words[0] in QUERIES:
-                try:
-                    answer = s.query(words[0], words[1:])
-                except ValueError as e:
-                    answer = "error %s" % e
-                print(answer, flush=True)
-                continue
-            if incomplete(line):
-                pending = line
-                continue
-            text = line
-        try:
-            s.material = parse_material(text)
-            answer = "ok"
-        except ValueError as e:
-            answer = "error %s" % e
-        print(answer, flush=True)
-    if pending is not None:
-        print("error end of input inside a statement (unclosed bracket or string)", flush=True)
-    return 0
+    return qp.serve(Session())
 
 
 if __name__ == "__main__":

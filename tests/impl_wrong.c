@@ -26,25 +26,14 @@
  *   none          no bug (materia-query's answers)
  */
 #include <math.h>
-#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "support/answer_out.h"
 #include "materia.h"
 #include "materia/tools/query.h"
-
-static void out(const char *s)
-{
-    struct pollfd p;
-    fputs(s, stdout);
-    fputc('\n', stdout);
-    /* flush only when no query is waiting: the pipe stays full */
-    p.fd = 0;
-    p.events = POLLIN;
-    if (poll(&p, 1, 0) <= 0) fflush(stdout);
-}
 
 static double scale_f(const char *bug, const double *wo, const double *wi)
 {
@@ -88,7 +77,7 @@ int main(int argc, char **argv)
                 for (;;) pause();
             }
             if (!strcmp(bug, "garbage")) {
-                out("#?%");
+                t_answer_out("#?%");
                 continue;
             }
         }
@@ -102,7 +91,7 @@ int main(int argc, char **argv)
                 snprintf(fixed, sizeof fixed, "%.9g %.9g %.9g", a[0] * s, a[1] * s, a[2] * s);
             else
                 snprintf(fixed, sizeof fixed, "%.9g %.9g %.9g %.9g", a[0] * s, a[1] * s, a[2] * s, a[3]);
-            out(fixed);
+            t_answer_out(fixed);
         } else if (sscanf(line, "sample %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]) == 6 &&
                    sscanf(ans, "%lf %lf %lf %lf %lf %lf %lf %lf", &a[0], &a[1], &a[2], &a[3], &a[4], &a[5], &a[6],
                           &a[7]) == 8) {
@@ -135,11 +124,11 @@ int main(int argc, char **argv)
             if (!strcmp(bug, "nan-grazing") && fabs(v[2]) < 1e-3) a[3] = NAN;
             snprintf(fixed, sizeof fixed, "%.9g %.9g %.9g %.9g %.9g %.9g %.9g %u", a[0], a[1], a[2], a[3] * s, a[4] * s,
                      a[5] * s, a[6], (unsigned)a[7]);
-            out(fixed);
+            t_answer_out(fixed);
         } else {
-            out(ans);
+            t_answer_out(ans);
         }
-        if (n == 500 && !strcmp(bug, "extra")) out("0 0 0 0");
+        if (n == 500 && !strcmp(bug, "extra")) t_answer_out("0 0 0 0");
     }
     mt_query_destroy(q);
     return 0;

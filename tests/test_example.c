@@ -1,6 +1,6 @@
 /*
  * The worked example (examples/pbrt_materials.py, an independent Python
- * implementation of matte, plastic and mirror), as examples/README.md runs
+ * implementation of matte, plastic, mirror and glass), as examples/README.md runs
  * it:
  *
  * - against the published vectors through vectors/check.py: it must pass in
@@ -23,9 +23,9 @@
 #include "support/toutput.h"
 #include "support/ttools.h"
 
-/* the vectors' configurations of these three materials that the example
+/* the vectors' configurations of these four materials that the example
  * implements (no textures, no bump maps) */
-#define CONFIGS "'^(matte|plastic|mirror) ' --skip 'textured|bump'"
+#define CONFIGS "'^(matte|plastic|mirror|glass) ' --skip 'textured|bump'"
 
 /* vectors/check.py on the example: its exit status, its output in *out. */
 static int check_py(const char *impl_args, const char *configs, const char *files, char **out)
@@ -46,7 +46,7 @@ static void vectors(void)
     rc = check_py("", CONFIGS, "eval,sample", &out);
     if (out) fputs(out, stdout);
     free(out);
-    t_check(rc == 0, "example: matte, plastic and mirror agree with the vectors in both modes",
+    t_check(rc == 0, "example: matte, plastic, mirror and glass agree with the vectors in both modes",
             "vectors/check.py exited %d", rc);
     for (i = 0; i < 3; ++i) {
         char args[64], name[96];
@@ -91,23 +91,18 @@ static void through_impl(const char *bindir)
     size_t i;
     for (i = 0; i < sizeof impl_cases / sizeof impl_cases[0]; ++i) {
         const impl_case *c = &impl_cases[i];
-        char cmd[2048], name[160], *out;
-        int rc, ok;
+        char cmd[2048], name[160];
         snprintf(cmd, sizeof cmd,
                  "'%s/materia-conformance' --impl 'python3 examples/pbrt_materials.py%s%s' --mode %s --only '%s' "
                  "--quick --samples 200 --cells 4 --threads 1 --timeout 60 2>&1",
                  bindir, c->bug[0] ? " --bug " : "", c->bug, c->mode, c->only);
-        rc = t_run_output(cmd, &out);
         if (c->bug[0])
             snprintf(name, sizeof name, "example --impl: the planted bug \"%s\" fails the checks examples/README.md names",
                      c->bug);
         else
             snprintf(name, sizeof name, "example --impl: passes in %s mode, pbrt-v2's erratum an expected failure",
                      c->mode);
-        ok = rc == c->status && t_has_rows(out, c->rows);
-        t_check(ok, name, "exit %d (want %d): %s", rc, c->status, cmd);
-        if (!ok) t_show_unpassed(out, 16);
-        free(out);
+        t_check_run(name, cmd, c->status, c->rows, NULL);
     }
 }
 

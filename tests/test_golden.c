@@ -5,7 +5,7 @@
  * (tools/make-golden.sh, `make golden`). The comparison is statistical, as
  * Mitsuba 3's render tests are: a z-test of each 4x4 block and channel
  * against the golden mean with both variances, the Sidak correction over all
- * of them at significance 0.01 (materia/imgcmp.h). An honest re-render (a
+ * of them at significance 0.01 (materia/tools/imgcmp.h). An honest re-render (a
  * different seed from the golden one) must pass; the test also proves the
  * check has power: a 10% change of a material's colour, and corrected mode
  * on a plastic coat (its Fresnel term differs), must fail. The two dipole

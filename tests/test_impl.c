@@ -1,11 +1,21 @@
 /*
  * materia-conformance --impl, proven: materia's own query tool passes in both
  * modes, its pbrt-v2 errata expected failures (and the other precision's,
- * when make check names it in MATERIA_OTHER_QUERY), and every deliberately
- * wrong implementation of tests/impl_wrong.c is caught by the check meant to
- * catch it, with the hostile ones (exit, crash, hang, garbage, too few
- * values, an extra line) reported as such, without hanging the suite, and
- * an erratum of pbrt-v2 made worse failed, not expected. Runs the reduced
+ * when make check names it in MATERIA_OTHER_QUERY), with the same rows as
+ * materia run in the suite's own process (one conformance core); every
+ * deliberately wrong implementation of tests/impl_wrong.c is caught by the
+ * check meant to catch it, with the hostile ones (exit, crash, hang,
+ * garbage, too few values, an extra line) reported as such, without hanging
+ * the suite, and an erratum of pbrt-v2 made worse failed, not expected.
+ *
+ * And a renderer that is not pbrt-v2 (tests/impl_other.c: pbrt-v3's models
+ * in float, radiance transport, two random numbers, one-lobe Fresnel glass,
+ * a rough dielectric of its own in tests/impl_other.catalog) passes every
+ * physics check with --compare none, its unsupported materials skipped,
+ * while the agreement checks tell its models from pbrt-v2's; each of three
+ * real bugs planted in it fails a physics row, the near-normal one at the
+ * one incoming direction that shows it, with a reproducer that fails again
+ * alone; declaring the wrong transport fails physics too. Runs the reduced
  * set (--quick) and, for the wrong ones, one configuration each.
  */
 #include <stdio.h>
@@ -14,25 +24,98 @@
 #include <unistd.h>
 #include "support/toutput.h"
 
-static char bin[1100], tests_dir[1024];
+static char bin[1100], tests_dir[1024], src_dir[1100];
 static int failures;
 
-/* cmd must exit with status `want`; each of the rows "VERDICT|text|text..." must be present. */
-static void expect(const char *name, const char *args, int want, const char *const *rows)
+/* cmd must exit with status `want`; each of the rows "VERDICT|text|text..."
+ * must be present, and none of the lines `absent` holds; the output is
+ * kept in *keep when keep is not NULL. */
+static void expect_out(const char *name, const char *args, int want, const char *const *rows, const char *const *absent,
+                       char **keep)
 {
     char cmd[12000], *out = NULL;
-    int st, ok;
+    int st, ok, i;
     snprintf(cmd, sizeof cmd, "%.1100s/materia-conformance %.8192s 2>&1", bin, args);
     st = t_run_output(cmd, &out);
     ok = st == want && t_has_rows(out, rows);
     if (ok && want == 0 && !strstr(out, " passed, 0 failed")) ok = 0;
+    for (i = 0; ok && absent && absent[i]; ++i)
+        if (out && strstr(out, absent[i])) {
+            ok = 0;
+            printf("    holds \"%s\"\n", absent[i]);
+        }
     printf("%s impl: %s (exit %d, want %d)\n", ok ? "PASS" : "FAIL", name, st, want);
     if (!ok) {
         failures++;
         printf("    command: %s\n", cmd);
         t_show_unpassed(out, 12);
     }
-    free(out);
+    if (keep)
+        *keep = out;
+    else
+        free(out);
+}
+
+static void expect(const char *name, const char *args, int want, const char *const *rows)
+{
+    expect_out(name, args, want, rows, NULL, NULL);
+}
+
+/* The rows of a run: its output after the three lines of its header. */
+static const char *rows_of(const char *out)
+{
+    int k;
+    for (k = 0; out && k < 3 && (out = strchr(out, '\n')); ++k) out++;
+    return out ? out : "";
+}
+
+/* The rows' verdicts: each row up to its kind (physics, agreement), the
+ * summary lines whole, the lines under a row left out (malloc'd). */
+static char *verdicts_of(const char *rows)
+{
+    char *v = malloc(strlen(rows) + 1), *at = v;
+    while (v && *rows) {
+        const char *e = strchr(rows, '\n'), *k;
+        size_t len = e ? (size_t)(e - rows) : strlen(rows);
+        if (*rows != ' ') {
+            k = strstr(rows, " physics ");
+            if (!k || k > rows + len) k = strstr(rows, " agreement ");
+            if (k && k < rows + len) len = (size_t)(strchr(k + 1, ' ') - rows);
+            memcpy(at, rows, len);
+            at += len;
+            *at++ = '\n';
+        }
+        rows += e ? (size_t)(e - rows) + 1 : len;
+    }
+    if (v) *at = 0;
+    return v;
+}
+
+/* The command the reproducer at the start of `line` ("      repro: FILE;
+ * alone: COMMAND") gives, run from bin: its exit status, its output. */
+static int rerun(const char *out, const char *marker, char **rout)
+{
+    const char *l = out ? strstr(out, marker) : NULL, *a, *e;
+    char cmd[12000];
+    *rout = NULL;
+    if (!l || !(a = strstr(l, "; alone: materia-conformance "))) return -1;
+    a += strlen("; alone: materia-conformance ");
+    e = strchr(a, '\n');
+    snprintf(cmd, sizeof cmd, "%.1100s/materia-conformance %.*s 2>&1", bin, (int)(e ? e - a : (long)strlen(a)), a);
+    return t_run_output(cmd, rout);
+}
+
+/* impl-other BUG with --compare none on the configurations only selects:
+ * a physics row must fail. */
+static void other_bug(const char *bug, const char *only, const char *const *rows, char **keep, const char *extra)
+{
+    char args[8192], name[160];
+    snprintf(args, sizeof args,
+             "--impl '%.1000s/impl-other %.100s' --compare none --quick --catalog builtin --catalog '%.1000s/tests/impl_other.catalog' "
+             "--only '%.200s' --threads 2 %.300s",
+             tests_dir, bug, src_dir, only, extra);
+    snprintf(name, sizeof name, "impl-other %s: a real bug, caught by physics alone", bug);
+    expect_out(name, args, 1, rows, NULL, keep);
 }
 
 static void wrong(const char *bug, const char *only, const char *extra, const char *const *rows)
@@ -57,10 +140,42 @@ int main(int argc, char **argv)
     else
         snprintf(tests_dir, sizeof tests_dir, ".");
     snprintf(bin, sizeof bin, "%.1000s/../bin", tests_dir);
+    /* the source tree (make check runs from it) */
+    snprintf(src_dir, sizeof src_dir, ".");
 
-    /* materia itself, both modes */
-    snprintf(args, sizeof args, "--impl '%s/materia-query' --quick --threads 2", bin);
-    expect("materia-query passes, corrected mode", args, 0, NULL);
+    /* materia itself, both modes; and in this process, with the same rows */
+    {
+        char *child = NULL, *self = NULL;
+        snprintf(args, sizeof args, "--impl '%s/materia-query' --quick --threads 2", bin);
+        expect_out("materia-query passes, corrected mode", args, 0, NULL, NULL, &child);
+        expect_out("materia in this process passes, corrected mode", "--impl-inprocess --quick --threads 2", 0, NULL, NULL,
+                   &self);
+        /* float: the same rows, value for value. double: the same verdicts;
+         * a double materia-query reads the suite's float inputs from their
+         * 9 digits, which name the float but are not its value (0.0108162314
+         * against 0.01081623137...), so its statistics differ in the last
+         * digits */
+        if (child && self && strstr(child, "(materia float build")) {
+            if (!strcmp(rows_of(child), rows_of(self)))
+                printf("PASS impl: in this process and through materia-query, the same rows\n");
+            else {
+                failures++;
+                printf("FAIL impl: in this process and through materia-query, the same rows (they differ)\n");
+            }
+        } else {
+            char *a = child ? verdicts_of(rows_of(child)) : NULL, *b = self ? verdicts_of(rows_of(self)) : NULL;
+            if (a && b && !strcmp(a, b))
+                printf("PASS impl: in this process and through materia-query, the same verdicts (double)\n");
+            else {
+                failures++;
+                printf("FAIL impl: in this process and through materia-query, the same verdicts (double; they differ)\n");
+            }
+            free(a);
+            free(b);
+        }
+        free(child);
+        free(self);
+    }
     snprintf(args, sizeof args, "--impl '%s/materia-query' --quick --threads 2 --mode pbrt-v2", bin);
     {
         /* pbrt-v2's glossy-sample-pdf erratum, reproduced: expected failures */
@@ -69,11 +184,96 @@ int main(int argc, char **argv)
                                            "XFAIL|plastic default|pdf integral|the same way", NULL};
         expect("materia-query passes, pbrt-v2 mode, pbrt-v2's failures expected", args, 0, same);
     }
+    /* Snell's index of a refraction, oriented by the shading normal about
+     * which the BSDF refracts: with ng tilted 37 degrees from it, a wo above
+     * ns and below ng enters the glass (taken by ng, its index was 1/1.5) */
+    snprintf(args, sizeof args,
+             "--impl '%s/materia-query' --compare none --only '^glass ng tilted 37 deg$' --check helmholtz --quick --threads 2",
+             bin);
+    {
+        static const char *const ns[] = {"PASS|glass ng tilted 37 deg|helmholtz|physics|index 1.5 by Snell", NULL};
+        expect("helmholtz takes the side of a refraction from the shading normal", args, 0, ns);
+    }
     if (other && *other && access(other, X_OK) == 0) {
         snprintf(args, sizeof args, "--impl '%.2000s' --quick --threads 2", other);
         expect("the other precision's materia-query passes", args, 0, NULL);
     } else {
         printf("SKIP impl: the other precision's materia-query (MATERIA_OTHER_QUERY not set: make check sets it)\n");
+    }
+    /* a renderer that is not pbrt-v2, honest: physics passes, its missing
+     * materials skipped, agreement tells its models apart */
+    {
+        static const char *const clean[] = {"SKIP|translucent default|unsupported", "PASS|plastic roughness=0.001|chi2 ",
+                                            "PASS|glass default|helmholtz|radiance",
+                                            "PASS|roughglass index=1.5 roughness=0.01|reciprocity|index 1.5",
+                                            "PASS|glass default|furnace  |radiance", NULL};
+        static const char *const no_agreement[] = {"agree f", "chi2 materia", NULL};
+        static const char *const differ[] = {"FAIL|plastic default|agree f|agreement", NULL};
+        char *out = NULL;
+        snprintf(args, sizeof args,
+                 "--impl '%.1000s/impl-other' --compare none --quick --catalog builtin --catalog '%s/tests/impl_other.catalog' "
+                 "--threads 2",
+                 tests_dir, src_dir);
+        expect_out("impl-other (pbrt-v3's models, radiance, two numbers) passes physics, --compare none", args, 0, clean,
+                   no_agreement, NULL);
+        snprintf(args, sizeof args, "--impl '%.1000s/impl-other' --quick --only '^(plastic default|glass default)$' --threads 2",
+                 tests_dir);
+        expect_out("impl-other compared with materia: its models differ (agreement), its physics holds", args, 1, differ,
+                   NULL, &out);
+        if (!out || !strstr(out, "physics: ") || !strstr(strstr(out, "physics: "), " 0 failed,")) {
+            failures++;
+            printf("FAIL impl: impl-other compared with materia fails no physics row\n");
+        } else {
+            printf("PASS impl: impl-other compared with materia fails no physics row\n");
+        }
+        free(out);
+        /* materia (three numbers: u2 drives its glossy lobes) said to take two:
+         * with u2 held at 1/2 its samples collapse */
+        snprintf(args, sizeof args, "--impl '%s/materia-query' --compare none --quick --sample-numbers 2 --only '^plastic default$' --threads 2",
+                 bin);
+        {
+            static const char *const two[] = {"FAIL|plastic default|chi2  |physics", NULL};
+            expect("materia-query declared with two sample numbers fails chi2", args, 1, two);
+        }
+        /* its transport declared wrong: physics sees it, in the quick set too
+         * (cos -0.9999 refracts out of glass of index 1.5: its furnace from
+         * inside is 1.5^2 (1 - F) + F = 2.2, not 1) */
+        snprintf(args, sizeof args, "--impl '%.1000s/impl-other' --compare none --quick --transport importance --only '^glass default$' --threads 2",
+                 tests_dir);
+        {
+            static const char *const lie[] = {"FAIL|glass default|helmholtz|physics",
+                                              "FAIL|glass default|furnace  |physics|rho 2.2", NULL};
+            expect("impl-other declared with the wrong transport fails physics", args, 1, lie);
+        }
+    }
+    /* its real bugs, planted one at a time */
+    {
+        static const char *const nearnormal[] = {"FAIL|plastic roughness=0.001|chi2  |physics", NULL};
+        static const char *const facing[] = {"FAIL|roughglass index=1.5 roughness=0.01|pdf integral|physics", NULL};
+        static const char *const negative[] = {"FAIL|substrate default|extremes|physics", NULL};
+        char *out = NULL, *again = NULL, rp[1200];
+        int st;
+        snprintf(rp, sizeof rp, "--repro '%.1000s/impl-other-repro'", tests_dir);
+        other_bug("nearnormal", "^plastic roughness=0.001$", nearnormal, &out, rp);
+        /* the direction that shows it, named: cos theta 0.9999 at phi 40 degrees */
+        if (out && strstr(out, "at wo (0.0108162314, 0.00911038648, 0.999899983), theta 0.8103 deg, phi 40.11 deg"))
+            printf("PASS impl: the near-normal bug's row names its direction\n");
+        else {
+            failures++;
+            printf("FAIL impl: the near-normal bug's row names its direction\n");
+        }
+        st = rerun(out, "repro: ", &again);
+        if (st == 1 && again && t_has_row(again, "FAIL", "plastic roughness=0.001|chi2  |physics"))
+            printf("PASS impl: the near-normal bug's reproducer fails alone\n");
+        else {
+            failures++;
+            printf("FAIL impl: the near-normal bug's reproducer fails alone (exit %d)\n", st);
+            t_show_unpassed(again, 6);
+        }
+        free(out);
+        free(again);
+        other_bug("facing", "^roughglass index=1.5 roughness=0.01$", facing, NULL, "");
+        other_bug("blend-negative", "^substrate default$", negative, NULL, "");
     }
     /* the wrong ones, each caught where it should be */
     {

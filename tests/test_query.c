@@ -72,8 +72,51 @@ static void test_version(void)
              MT_USE_DOUBLE ? "double" : "float");
     expect("query: version answers protocol, materia version and precision", "version", want);
     expect("query: version takes no arguments", "version 2", "error version: takes no arguments");
-    t_check(MT_QUERY_PROTOCOL_VERSION == 1, "query: protocol version 1 (docs/PROTOCOL.md)", "header says %d",
+    t_check(MT_QUERY_PROTOCOL_VERSION == 2, "query: protocol version 2 (docs/PROTOCOL.md)", "header says %d",
             MT_QUERY_PROTOCOL_VERSION);
+}
+
+/* conventions: pbrt-v2's, and radiance transport with the session's option;
+ * the option scales a specular transmission by (eta_t/eta_i)^2 = 1/2.25
+ * from outside glass of index 1.5 */
+static void test_conventions(void)
+{
+    char a[8192], b[8192];
+    mt_error err;
+    mt_query *q;
+    double ta, tb;
+    const char *glass = "Material \"glass\"\nsample 0 0.6 0.8 0.9 0.5 0.5";
+    expect("query: conventions of materia: importance, three numbers", "conventions",
+           "transport importance sample-numbers 3");
+    expect("query: conventions takes no arguments", "conventions 1", "error conventions: takes no arguments");
+    run(glass, a, sizeof a);
+    mt_error_clear(&err);
+    q = mt_query_create(NULL, &err);
+    mt_query_set_options(q, MT_OPT_RADIANCE_TRANSMISSION);
+    {
+        char out[4096];
+        size_t at = 0;
+        const char *lines[] = {"conventions", "Material \"glass\"", "sample 0 0.6 0.8 0.9 0.5 0.5"};
+        int i;
+        b[0] = 0;
+        for (i = 0; i < 3; ++i)
+            if (mt_query_line(q, lines[i], out, sizeof out)) at += (size_t)snprintf(b + at, sizeof b - at, "%s\n", out);
+    }
+    mt_query_destroy(q);
+    t_check(!strncmp(b, "transport radiance sample-numbers 3\n", 36), "query: the radiance option answers transport radiance",
+            "answered %s", b);
+    /* the sampled transmission's f (4th value) in both */
+    ta = tb = 0;
+    {
+        const char *la = strchr(a, '\n'), *lb = strchr(strchr(b, '\n') + 1, '\n');
+        double v[8];
+        if (la && sscanf(la + 1, "%lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7]) == 8)
+            ta = v[3];
+        if (lb && sscanf(lb + 1, "%lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7]) == 8)
+            tb = v[3];
+    }
+    t_check(ta > 0 && fabs(tb * 2.25 / ta - 1) < 1e-5, "query: radiance transport scales transmission by 1/eta^2",
+            "importance f %g, radiance f %g", ta, tb);
 }
 
 static void test_lines(void)
@@ -193,6 +236,7 @@ static void test_numbers(void)
 int main(void)
 {
     test_version();
+    test_conventions();
     test_lines();
     test_answers();
     test_numbers();

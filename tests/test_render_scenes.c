@@ -294,7 +294,7 @@ static int seed_means(const char *name, const char *text, double m[3], double se
             double unused;
             t_region_stats(&img, NULL, 0, 0, img.width, img.height, c, &x[k][c], &unused);
         }
-        mt_image_free(&img);
+        mt_image_destroy(&img);
     }
     mt_scene_destroy(sc);
     for (c = 0; c < 3; ++c) {

@@ -76,7 +76,9 @@ static void help_lists_every_option(void)
              {"materia-imgdiff", "--help", "tools/materia-imgdiff.c", 1},
              {"materia-merl", "--help", "tools/materia-merl.c", 1},
              {"materia-query", "--help", "tools/materia-query.c", 1},
-             {"materia-sheet", "--help", "tools/materia-sheet.c", 1}};
+             {"materia-sheet", "--help", "tools/materia-sheet.c", 1},
+             {"materia-conformance", "--help", "conformance/main.c", 1},
+             {"materia-conformance", "--impl --help", "conformance/impl_main.c", 1}};
     size_t i;
     for (i = 0; i < sizeof t / sizeof t[0]; ++i) {
         char *src = slurp(t[i].src), *help, *p, missing[512] = "", name[160];
@@ -86,7 +88,7 @@ static void help_lists_every_option(void)
         for (p = src; p && (p = strstr(p, "\"-")) != NULL; ++p) {
             char opt[40], line[48], *at, *next;
             size_t n = strspn(p + 1, "-abcdefghijklmnopqrstuvwxyz0123456789");
-            if (n < 2 || n >= sizeof opt || p[1 + n] != '"' || !strcmp(p + 1 + n - 1, "-")) continue;
+            if (n < 2 || n >= sizeof opt || p[1 + n] != '"' || p[n] == '-') continue; /* "--" itself, or a prefix */
             memcpy(opt, p + 1, n);
             opt[n] = 0;
             /* an explanation: the option first on a line (after spaces or ", ") */
@@ -204,6 +206,14 @@ static void conformance(void)
         {"--only selecting nothing", "--impl q --only 'no such configuration' --plots pl", "selects no configuration"},
         {"--report in a missing directory", "--impl q --report nosuchdir/r.json", "--report: cannot write \"nosuchdir/r.json\""},
         {"--plots-all without --plots", "--impl q --plots-all", "--plots-all needs --plots"},
+        {"an unknown --compare", "--impl q --compare pbrt", "--compare: \"pbrt\""},
+        {"an unknown --check", "--impl q --check chi3", "--check: \"chi3\""},
+        {"an unknown --transport", "--impl q --transport adjoint", "--transport: \"adjoint\""},
+        {"--sample-numbers 4", "--impl q --sample-numbers 4", "--sample-numbers: \"4\""},
+        {"--significance 1", "--impl q --significance 1", "--significance: \"1\""},
+        {"--wo negative", "--impl q --wo -1", "--wo: \"-1\""},
+        {"--impl with --impl-inprocess", "--impl q --impl-inprocess", "--impl and --impl-inprocess name two"},
+        {"a --catalog that does not exist", "--impl q --catalog no-such-catalog.txt", "no-such-catalog.txt:"},
     };
     size_t i;
     t_tool_check("conformance: --only that selects nothing is status 2", "materia-conformance",

@@ -1,9 +1,14 @@
 /*
  * materia-query: answers queries about materials and textures, one line in,
- * one line out (protocol in include/materia/query.h and README.md). It never
+ * one line out (protocol in include/materia/tools/query.h and README.md). It never
  * stops on a bad line: it answers "error <message>" and goes on.
  *
- *   materia-query [--dir DIR] < queries > answers
+ *   materia-query [--dir DIR] [--transport importance|radiance] < queries > answers
+ *
+ * --transport radiance turns on materia's radiance-transmission option
+ * (MT_OPT_RADIANCE_TRANSMISSION: specular transmission scaled by
+ * (eta_t/eta_i)^2, pbrt-v3's radiance mode) in both modes; the
+ * "conventions" query says which.
  *
  * Warnings (parameters a statement did not use, redefinitions) go to standard
  * error as "warning FILE:LINE: MESSAGE"; standard output carries one answer
@@ -107,6 +112,7 @@ static int list(const char *what)
 int main(int argc, char **argv)
 {
     const char *dir = NULL;
+    int radiance = 0;
     mt_query *q;
     mt_error err;
     char out[4096];
@@ -117,12 +123,19 @@ int main(int argc, char **argv)
             if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
             dir = argv[++i];
             if (!tool_directory("materia-query", "--dir", dir)) return 1;
-        }
-        else if (!strcmp(argv[i], "--list")) {
+        } else if (!strcmp(argv[i], "--transport")) {
+            if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
+            ++i;
+            if (strcmp(argv[i], "importance") && strcmp(argv[i], "radiance")) {
+                fprintf(stderr, "materia-query: --transport: \"%s\" is neither importance nor radiance\n", argv[i]);
+                return 2;
+            }
+            radiance = !strcmp(argv[i], "radiance");
+        } else if (!strcmp(argv[i], "--list")) {
             if (i + 1 == argc) return tool_no_value("materia-query", argv[i]);
             return list(argv[i + 1]);
         } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            printf("usage: materia-query [--dir DIR] < queries\n"
+            printf("usage: materia-query [--dir DIR] [--transport importance|radiance] < queries\n"
                    "       materia-query --list materials|textures\n"
                    "       materia-query --help | --version\n"
                    "Answers one line per query on standard output (docs/PROTOCOL.md; README.md, \"The\n"
@@ -130,6 +143,8 @@ int main(int argc, char **argv)
                    "Warnings go to standard error as \"warning FILE:LINE: MESSAGE\". The mode is pbrt-v2\n"
                    "until a \"mode corrected\" line.\n"
                    "  --dir DIR     relative file names resolve against DIR (default: the current directory)\n"
+                   "  --transport T importance (default: pbrt-v2's) or radiance: radiance scales specular\n"
+                   "                transmission by (eta_t/eta_i)^2, as pbrt-v3 does\n"
                    "  --list WHAT   instead of a session: the registered material kinds (\"bssrdf\" after\n"
                    "                those with one) or texture classes (\"float\" after those with a float\n"
                    "                variant), one a line\n"
@@ -155,6 +170,7 @@ int main(int argc, char **argv)
         return 1;
     }
     mt_query_set_warning(q, warn, NULL);
+    if (radiance) mt_query_set_options(q, MT_OPT_RADIANCE_TRANSMISSION);
     setvbuf(stdout, NULL, _IOFBF, 1 << 16);
     for (;;) {
         int oom = 0;

@@ -1,5 +1,5 @@
 /*
- * materia-sheet: a contact sheet of images with labels (include/materia/sheet.h).
+ * materia-sheet: a contact sheet of images with labels (include/materia/tools/sheet.h).
  *
  *   materia-sheet -o SHEET.png [--columns N] [--exposure STOPS] [--font-scale K]
  *                 LABEL=IMAGE ... | IMAGE ...

@@ -52,13 +52,7 @@ static void integrand(void *ctx, double phi, double z, double *out)
 /* make check's per-test significance (conformance/main.c) */
 static double suite_alpha(void)
 {
-    int ns, nm, nb, i;
-    const cf_subject *s = cf_subjects(&ns), *m = cf_material_subjects(&nm), *b = cf_broken_subjects(&nb);
-    long tests = 0;
-    mt_vec3 wos[8];
-    for (i = 0; i < ns; ++i) tests += (long)cf_wo_set(&s[i], wos, 8) * 3 * 2;
-    for (i = 0; i < nm; ++i) tests += (long)cf_wo_set(&m[i], wos, 8) * 3 * 2;
-    for (i = 0; i < nb; ++i) tests += (long)cf_wo_set(&b[i], wos, 8) * 3;
+    long tests = cf_suite_tests(0);
     printf("# tests %ld\n", tests);
     return cf_sidak(0.01, tests);
 }

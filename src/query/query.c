@@ -34,6 +34,7 @@ struct mt_query {
     mt_state *state;
     char *dir;
     mt_mode mode;
+    mt_mode options;  /* added to every mode: MT_OPT_RADIANCE_TRANSMISSION */
     mt_diffgeom dg;   /* the shading point */
     mt_vec3 ng;       /* its geometric normal */
     mt_material *material; /* for the current state, or NULL */
@@ -45,6 +46,13 @@ struct mt_query {
     mt_warning_fn warn; /* warnings: unused parameters, redefinitions */
     void *warn_ctx;
 };
+
+void mt_query_set_options(mt_query *q, mt_mode options)
+{
+    q->options = options & MT_OPT_RADIANCE_TRANSMISSION;
+    mt_state_set_mode(q->state, q->mode | q->options);
+    q->dirty = 1;
+}
 
 void mt_query_set_warning(mt_query *q, mt_warning_fn warn, void *ctx)
 {
@@ -388,9 +396,19 @@ static int query_mode(mt_query *q, const char *args, char *out, size_t size)
     if (sscanf(args, " %31s%n", word, &end) != 1 || !only_space(args + end) || mt_mode_parse(word, &m, NULL) != MT_OK)
         return fail_msg(out, size, "mode: pbrt-v2 or corrected");
     q->mode = m;
-    mt_state_set_mode(q->state, m);
+    mt_state_set_mode(q->state, m | q->options);
     q->dirty = 1;
     return answer(out, size, "ok");
+}
+
+/* The conventions of its answers (docs/PROTOCOL.md): pbrt-v2's BTDF values
+ * (importance) unless the session's radiance-transmission option is on, and
+ * pbrt-v2's three random numbers. */
+static int query_conventions(mt_query *q, const char *args, char *out, size_t size)
+{
+    if (!only_space(args)) return fail_msg(out, size, "conventions: takes no arguments");
+    return answer(out, size, "transport %s sample-numbers 3",
+                  (q->options & MT_OPT_RADIANCE_TRANSMISSION) ? "radiance" : "importance");
 }
 
 /* The protocol's version (docs/PROTOCOL.md), materia's, and the precision
@@ -411,7 +429,8 @@ static int dispatch(mt_query *q, const char *line, char *out, size_t size)
         int (*fn)(mt_query *, const char *, char *, size_t);
     } queries[] = {{"mode", query_mode},     {"at", query_at},         {"eval", query_eval},
                    {"sample", query_sample}, {"rho", query_rho},       {"bssrdf", query_bssrdf},
-                   {"shading", query_shading}, {"texture", query_texture}, {"version", query_version}};
+                   {"shading", query_shading}, {"texture", query_texture}, {"version", query_version},
+                   {"conventions", query_conventions}};
     const char *s = line;
     size_t len = 0, i;
     while (isspace((unsigned char)*s)) s++;

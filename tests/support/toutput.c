@@ -1,5 +1,6 @@
 /* A command's output and the rows in it: see toutput.h. */
 #include "support/toutput.h"
+#include "support/check.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,4 +88,17 @@ void t_show_unpassed(const char *out, int max)
         }
         l = e ? e + 1 : NULL;
     }
+}
+
+int t_check_run(const char *name, const char *cmd, int status, const char *const *rows, char **output)
+{
+    char *out = NULL;
+    int rc = t_run_output(cmd, &out), ok = rc == status && out && t_has_rows(out, rows);
+    t_check(ok, name, "exit %d (want %d): %s", rc, status, cmd);
+    if (!ok && out) t_show_unpassed(out, 16);
+    if (output)
+        *output = out;
+    else
+        free(out);
+    return ok;
 }

@@ -20,5 +20,10 @@ int t_has_rows(const char *out, const char *const *rows);
 /* Prints (indented) up to max lines of out that do not begin with PASS:
  * what a failed check shows of a run. */
 void t_show_unpassed(const char *out, int max);
+/* Runs cmd and checks (t_check, named name) that it exits with status and
+ * prints each of rows (NULL-terminated, as t_has_rows); when not, shows the
+ * rows that did not pass. Returns 1 when it did; *output, when output is not
+ * NULL, keeps the output (malloc'd, or NULL) for further checks. */
+int t_check_run(const char *name, const char *cmd, int status, const char *const *rows, char **output);
 
 #endif

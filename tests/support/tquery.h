@@ -1,4 +1,4 @@
-/* Asking an in-process query session (materia/query.h) from a test. A
+/* Asking an in-process query session (materia/tools/query.h) from a test. A
  * header of its own (not an object of tests/support/, which every test
  * links): the query session pulls in the graphics state, whose texture
  * table test_state replaces with its own. */

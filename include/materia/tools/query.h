@@ -15,6 +15,7 @@
  *   shading   -> nx ny nz dpdux dpduy dpduz dpdvx dpdvy dpdvz (after bump)
  *   texture "name"                                 -> value | r g b
  *   version      -> protocol <N> materia <version> precision float|double
+ *   conventions  -> transport importance|radiance sample-numbers 3
  * A bad line is answered "error <message>" and the session goes on. A
  * statement continues on the next line while a bracket or string is open.
  * The whole protocol, with its rules for state, errors and numbers, is
@@ -36,7 +37,7 @@ extern "C" {
 
 /* Raised when a line type, an answer's shape or a rule of docs/PROTOCOL.md
  * changes; the "version" query answers it. */
-#define MT_QUERY_PROTOCOL_VERSION 1
+#define MT_QUERY_PROTOCOL_VERSION 2
 
 typedef struct mt_query mt_query;
 
@@ -59,6 +60,12 @@ MT_API int mt_query_line(mt_query *q, const char *line, char *out, size_t size);
  * statement is still answered "ok". materia-query writes them to standard
  * error as "warning FILE:LINE: MESSAGE". */
 MT_API void mt_query_set_warning(mt_query *q, mt_warning_fn warn, void *ctx);
+
+/* Options added to the session's mode (pbrt-v2 or corrected) for every
+ * material it builds: MT_OPT_RADIANCE_TRANSMISSION, pbrt-v3's radiance
+ * scaling of specular transmission; the "conventions" query then answers
+ * transport radiance. Other bits are ignored. */
+MT_API void mt_query_set_options(mt_query *q, mt_mode options);
 
 /* At end of input: 1 and an error answer when a statement was left open. */
 MT_API int mt_query_finish(mt_query *q, char *out, size_t size);
