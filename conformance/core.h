@@ -137,6 +137,8 @@ struct cf_impl {
     const char *mode_line;
     void *q;             /* materia: its mt_query session */
     mt_arena *arena;
+    const struct mt_impl_plugin *plugin; /* a plugin (backend_lib.c): its table, state, configuration */
+    void *plugin_state, *plugin_cfg;
 };
 
 /* materia's own BSDFs in this process (its mt_query session, or a
@@ -144,6 +146,13 @@ struct cf_impl {
 void cf_impl_materia(cf_impl *im, mt_mode mode);
 /* A child process running command (sh -c) that speaks the protocol. */
 void cf_impl_child(cf_impl *im, mt_mode mode, const char *command, double timeout);
+/* A plugin (include/materia/impl.h) in this process, its state made by
+ * its create (backend_lib.c). */
+void cf_impl_lib(cf_impl *im, mt_mode mode, const struct mt_impl_plugin *plugin, void *state);
+/* A plugin's declarations read as a protocol speaker's (cf_impl_probe):
+ * 0, or -1 and msg. */
+int cf_impl_lib_probe(const struct mt_impl_plugin *plugin, cf_conventions *conv, int *declared, double *eps, char *name,
+                      size_t nn, char *msg, size_t nm);
 /* Asks a protocol speaker its version and conventions (a child of its
  * own). 0, or -1 and msg. name gets "NAME VERSION precision P". */
 int cf_impl_probe(const char *command, double timeout, cf_conventions *conv, int *declared, double *eps,

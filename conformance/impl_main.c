@@ -5,6 +5,7 @@
  * costs only its own checks), the expected failures of pbrt-v2 mode, the
  * table, --repro files and the JSON report. See docs/CONFORMANCE-SUITE.md.
  */
+#include <dlfcn.h>
 #include <errno.h>
 #include <pthread.h>
 #include <regex.h>
@@ -14,6 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "impl.h"
+#include "materia/impl.h"
 
 /* the configurations a --catalog FILE may hold */
 #define MAX_CATALOGS 16
@@ -28,7 +30,9 @@ typedef struct pool {
     cfg_out *out;
     int n, next, hangs;
     const cf_run *run;
-    const char *command; /* NULL: materia in this process */
+    const char *command; /* NULL: materia in this process, or the plugin */
+    const mt_impl_plugin *plugin;
+    void *plugin_state;
     double timeout;
     cf_conventions conv;
     double eps;
@@ -63,10 +67,12 @@ static void run_one(pool *p, cfg_out *o)
     }
     if (p->command)
         cf_impl_child(&test, run->mode, p->command, p->timeout);
+    else if (p->plugin)
+        cf_impl_lib(&test, run->mode, p->plugin, p->plugin_state);
     else
         cf_impl_materia(&test, run->mode);
     test.conv = p->conv;
-    if (p->command) test.eps = p->eps;
+    if (p->command || p->plugin) test.eps = p->eps;
     r = test.ops->open(&test, &o->c);
     if (!r) r = cf_run_case(run, &o->c, &test, refp, NULL, &o->o);
     o->o.agreement = refp != NULL;
@@ -145,10 +151,14 @@ static void usage(FILE *f, const char *argv0)
             "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS]\n"
             "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR]\n"
             "       %s --impl-inprocess ...   materia itself, in this process, in place of COMMAND\n"
+            "       %s --impl-lib PLUGIN.so [--impl-arg STRING] ...   a plugin (include/materia/impl.h)\n"
             "Runs the material-level suite through COMMAND (run by sh -c), a program that speaks the\n"
             "query protocol of materia-query on its standard input and output.\n"
             "  --impl COMMAND the implementation (required, or --impl-inprocess)\n"
             "  --impl-inprocess  materia itself in this process, instead of COMMAND\n"
+            "  --impl-lib P   a plugin (a shared object filling include/materia/impl.h), loaded into this\n"
+            "                 process and called in batches, instead of COMMAND\n"
+            "  --impl-arg S   with --impl-lib: the string its create() receives (default: none)\n"
             "  --mode M       pbrt-v2 or corrected (corrected, the default: a renderer is compared with the\n"
             "                 physics; every other tool defaults to pbrt-v2)\n"
             "  --compare C    materia (the default): the agreement checks against materia run too;\n"
@@ -183,12 +193,14 @@ static void usage(FILE *f, const char *argv0)
             "  --version      materia's version and precision\n"
             "Each option is given once (--catalog as often as needed); a value may not begin with \"--\".\n"
             "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n",
-            argv0, argv0);
+            argv0, argv0, argv0);
 }
 
 /* The command line of --impl, read. */
 typedef struct opts {
     const char *command, *mode, *only, *data, *report, *plots, *compare, *check, *repro, *transport, *snum, *skip;
+    const char *lib, *lib_arg;
+    const mt_impl_plugin *linked; /* mt_impl_run_suite's plugin */
     const char *catalogs[MAX_CATALOGS];
     int ncatalogs, quick, plots_all, cells, threads, inprocess, wo;
     long samples;
@@ -214,12 +226,12 @@ static int whole(const char *argv0, const char *opt, const char *v, long lo, lon
  * (status 0), 2 on a usage error (the message names the option). Every
  * option that takes a value must have one that is not itself an option:
  * "--impl --help" asks for this help, not for the command "--help". */
-static int parse(int argc, char **argv, opts *o)
+static int parse(int argc, char **argv, opts *o, const mt_impl_plugin *linked)
 {
     static const char *const valued[] = {"--impl", "--mode", "--only", "--data", "--timeout", "--samples", "--cells",
                                          "--threads", "--report", "--plots", "--compare", "--check", "--wo",
                                          "--significance", "--transport", "--sample-numbers", "--repro", "--catalog",
-                                         "--skip"};
+                                         "--skip", "--impl-lib", "--impl-arg"};
     enum { V_CATALOG = 17 };
     const char *sv[sizeof valued / sizeof valued[0]] = {NULL}; /* their values, in that order */
     size_t k, nv = sizeof valued / sizeof valued[0];
@@ -227,6 +239,7 @@ static int parse(int argc, char **argv, opts *o)
     long x;
     memset(o, 0, sizeof *o);
     o->wo = -1;
+    o->linked = linked;
     for (i = 1; i < argc; ++i)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout, argv[0]);
@@ -282,11 +295,23 @@ static int parse(int argc, char **argv, opts *o)
     o->snum = sv[15];
     o->repro = sv[16];
     o->skip = sv[18];
-    if (o->inprocess && o->command) {
-        fprintf(stderr, "%s: --impl and --impl-inprocess name two implementations: give one\n", argv[0]);
+    o->lib = sv[19];
+    o->lib_arg = sv[20];
+    if ((o->inprocess != 0) + (o->command != NULL) + (o->lib != NULL) + (linked != NULL) > 1) {
+        fprintf(stderr, "%s: %s name two implementations: give one\n", argv[0],
+                linked ? "the linked plugin and --impl, --impl-lib or --impl-inprocess"
+                       : "--impl, --impl-lib and --impl-inprocess");
         return 2;
     }
-    if (!o->inprocess && (!o->command || !o->command[strspn(o->command, " \t\n")])) {
+    if (o->lib_arg && !o->lib && !linked) {
+        fprintf(stderr, "%s: --impl-arg needs --impl-lib\n", argv[0]);
+        return 2;
+    }
+    if (o->lib && !o->lib[0]) {
+        fprintf(stderr, "%s: --impl-lib needs the path of a shared object\n", argv[0]);
+        return 2;
+    }
+    if (!o->inprocess && !o->lib && !linked && (!o->command || !o->command[strspn(o->command, " \t\n")])) {
         fprintf(stderr, "%s: --impl needs a command (the program to test, run by sh -c)\n", argv[0]);
         return 2;
     }
@@ -553,7 +578,45 @@ static void print_rows(const cfg_out *out, int n, const char *mode, totals *t)
     }
 }
 
-int cf_impl_main(int argc, char **argv)
+/* --impl-lib PATH: the plugin's table (and its handle in *dl), or NULL
+ * and msg. */
+static const mt_impl_plugin *load_plugin(const char *path, void **dl, char *msg, size_t n)
+{
+    union {
+        void *p;
+        mt_impl_entry_fn f;
+    } entry; /* dlsym's object pointer as a function pointer, as POSIX allows */
+    const mt_impl_plugin *p;
+    const char *e;
+    /* a bare name would be searched on the library path: a file is meant */
+    char file[4200];
+    snprintf(file, sizeof file, "%s%s", strchr(path, '/') ? "" : "./", path);
+    *dl = dlopen(file, RTLD_NOW | RTLD_LOCAL);
+    if (!*dl) {
+        e = dlerror();
+        snprintf(msg, n, "cannot load \"%s\": %s", path, e ? e : "dlopen failed");
+        return NULL;
+    }
+    entry.p = dlsym(*dl, MT_IMPL_ENTRY);
+    if (!entry.p) {
+        snprintf(msg, n, "\"%s\" exports no %s (include/materia/impl.h)", path, MT_IMPL_ENTRY);
+        return NULL;
+    }
+    if (!(p = entry.f())) snprintf(msg, n, "\"%s\": %s returned NULL", path, MT_IMPL_ENTRY);
+    return p;
+}
+
+static int impl_main(int argc, char **argv, const mt_impl_plugin *linked);
+
+int cf_impl_main(int argc, char **argv) { return impl_main(argc, argv, NULL); }
+
+int mt_impl_run_suite(const mt_impl_plugin *plugin, int argc, char **argv)
+{
+    if (!plugin) return 2;
+    return impl_main(argc, argv, plugin);
+}
+
+static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
 {
     cf_run run;
     opts op;
@@ -571,7 +634,11 @@ int cf_impl_main(int argc, char **argv)
     cf_conventions conv = cf_conventions_default();
     double eps = 0;
     totals tot;
-    if ((i = parse(argc, argv, &op))) return i == 1 ? 0 : 2;
+    const mt_impl_plugin *plugin = NULL;
+    void *dl = NULL, *pstate = NULL;
+    const char *what; /* the implementation, in the header and the report */
+    char whatbuf[4200];
+    if ((i = parse(argc, argv, &op, linked))) return i == 1 ? 0 : 2;
     p.out = NULL;
     p.n = 0;
     memset(&run, 0, sizeof run);
@@ -686,7 +753,19 @@ int cf_impl_main(int argc, char **argv)
             if (cf_case_set_data(&p.out[i].c, absdata)) goto done;
     }
     /* the implementation's conventions: its answer, or the options' */
-    if (!op.inprocess) {
+    if (op.lib || op.linked) {
+        plugin = op.linked ? op.linked : load_plugin(op.lib, &dl, msg, sizeof msg);
+        if (!plugin || cf_impl_lib_probe(plugin, &conv, &declared, &eps, impl_name, sizeof impl_name, msg, sizeof msg)) {
+            fprintf(stderr, "%s: --impl-lib: %s\n", argv[0], msg);
+            goto done;
+        }
+        msg[0] = 0;
+        if (plugin->create && !(pstate = plugin->create(op.lib_arg, msg, sizeof msg))) {
+            fprintf(stderr, "%s: --impl-lib: the plugin's create(%s%s%s) failed: %s\n", argv[0], op.lib_arg ? "\"" : "",
+                    op.lib_arg ? op.lib_arg : "NULL", op.lib_arg ? "\"" : "", msg[0] ? msg : "(no message)");
+            goto done;
+        }
+    } else if (!op.inprocess) {
         if (cf_impl_probe(op.command, op.timeout, &conv, &declared, &eps, impl_name, sizeof impl_name, msg, sizeof msg)) {
             printf("FAIL  %-50s %-9s %-15s %-9s %s\n", "(the implementation)", op.mode, "protocol", "physics", msg);
             printf("0 passed, 1 failed\n");
@@ -719,6 +798,11 @@ int cf_impl_main(int argc, char **argv)
         at += (size_t)snprintf(rerun + at, sizeof rerun - at, "materia-conformance");
         if (op.inprocess)
             at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --impl-inprocess");
+        else if (op.lib)
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --impl-lib '%s'%s%s%s", op.lib,
+                                   op.lib_arg ? " --impl-arg '" : "", op.lib_arg ? op.lib_arg : "", op.lib_arg ? "'" : "");
+        else if (op.linked)
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " (the linked plugin)");
         else {
             const char *s;
             at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --impl '");
@@ -738,11 +822,16 @@ int cf_impl_main(int argc, char **argv)
     repro.dir = op.repro;
     repro.rerun = rerun;
     cf_conventions_format(&conv, cv, sizeof cv);
-    printf("materia-conformance --impl %s%s%s (materia %s build, mode %s, compare %s): %d configurations, %ld samples "
+    if (op.inprocess)
+        what = "in this process";
+    else if (plugin)
+        snprintf(whatbuf, sizeof whatbuf, "plugin %.4000s", op.lib ? op.lib : "(linked)"), what = whatbuf;
+    else
+        snprintf(whatbuf, sizeof whatbuf, "'%.4000s'", op.command), what = whatbuf;
+    printf("materia-conformance --impl %s (materia %s build, mode %s, compare %s): %d configurations, %ld samples "
            "per direction,\n%d x %d cells at most, %ld statistical tests, each at %.3g (Sidak: %.2g for the whole run)%s, "
            "%g s per answer\nimplementation: %s; conventions: %s (%s)\n",
-           op.inprocess ? "in this process" : "'", op.inprocess ? "" : op.command, op.inprocess ? "" : "'",
-           mt_precision(), op.mode, op.compare, nsel, run.cfg.samples, run.cfg.nphi, run.cfg.nz, run.cfg.tests,
+           what, mt_precision(), op.mode, op.compare, nsel, run.cfg.samples, run.cfg.nphi, run.cfg.nz, run.cfg.tests,
            run.cfg.alpha_test, run.cfg.alpha, op.significance > 0 ? " [--significance]" : "", op.timeout, impl_name, cv,
            op.transport || op.snum ? "set on the command line" : declared ? "its answer" : "pbrt-v2's: it answers no conventions");
     fflush(stdout);
@@ -750,7 +839,9 @@ int cf_impl_main(int argc, char **argv)
     p.next = 0;
     p.hangs = 0;
     p.run = &run;
-    p.command = op.inprocess ? NULL : op.command;
+    p.command = op.inprocess || plugin ? NULL : op.command;
+    p.plugin = plugin;
+    p.plugin_state = pstate;
     p.timeout = op.timeout;
     p.conv = conv;
     p.eps = eps;
@@ -762,7 +853,7 @@ int cf_impl_main(int argc, char **argv)
     pthread_mutex_destroy(&p.lock);
     print_rows(p.out, nsel, op.mode, &tot);
     fails = tot.failed[0] + tot.failed[1];
-    if (op.report && write_report(op.report, &run, op.inprocess ? "(in this process)" : op.command, impl_name, &conv,
+    if (op.report && write_report(op.report, &run, op.inprocess ? "(in this process)" : plugin ? what : op.command, impl_name, &conv,
                                   declared, p.out, nsel, &tot)) {
         fprintf(stderr, "%s: --report: cannot write \"%s\": %s\n", argv[0], op.report, strerror(errno));
         fails++;
@@ -784,5 +875,7 @@ done:
     if (have_re) regfree(&re);
     if (have_skip) regfree(&skip_re);
     if (tmpdir[0]) rm_data(tmpdir);
+    if (plugin && plugin->destroy && pstate) plugin->destroy(pstate);
+    if (dl) dlclose(dl);
     return status;
 }
