@@ -292,6 +292,10 @@ typedef struct cf_outcome {
     cf_v3 wo[CF_MAX_WO];
     cf_layout layout[CF_MAX_WO]; /* the cells of each direction (ncell 0: none) */
     double eta;                 /* the relative index found (Snell or reciprocity), or 0 */
+    /* the chi-square of each direction, for its power (power.c): samples,
+     * degrees of freedom, the reference mismatch's shape over its cells */
+    long pw_n[CF_MAX_WO], pw_dof[CF_MAX_WO];
+    double pw_v[CF_MAX_WO];
 } cf_outcome;
 
 /* Runs the checks of c on test (opened on c), against ref (materia opened
@@ -306,8 +310,11 @@ void cf_outcome_free(cf_outcome *o);
  * queries) failed too; 1 when the same way (impl_xfail.c). */
 int cf_same_failure(double alpha_test, const cf_result *test, const cf_result *mine, char *note, size_t n);
 
-/* The seed of configuration name's k-th stream (direction, pairs, ...). */
+/* The seed of configuration name's k-th stream (direction, pairs, ...),
+ * in the run's seeded variant (--seed S; 0, the default, is the suite's
+ * own numbers). cf_set_run_seed is called once, before the run. */
 uint64_t cf_seed(const char *name, int k);
+void cf_set_run_seed(uint64_t seed);
 /* A uniform number in [0, 1) as the float a query line carries. */
 float cf_u_float(mt_rng *rng);
 /* The random numbers of the main samples of direction w (n of them), and

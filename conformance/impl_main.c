@@ -16,7 +16,11 @@
 #include <unistd.h>
 #include "impl.h"
 #include "materia/impl.h"
+#include "power.h"
 
+/* --power's samples per direction at most: the pass keeps each
+ * direction's samples in memory (about 100 bytes each) */
+#define POWER_MAX_SAMPLES 20000000L
 /* the configurations a --catalog FILE may hold */
 #define MAX_CATALOGS 16
 
@@ -24,6 +28,8 @@ typedef struct cfg_out {
     cf_case c;
     cf_outcome o;
     char repro[CK_NCHECK][2048];
+    long samples;   /* --power: its samples per direction (0: the run's) */
+    double min_eps; /* the smallest smooth mismatch it catches in 95% of runs (1: none), or -1 */
 } cfg_out;
 
 typedef struct pool {
@@ -42,11 +48,14 @@ typedef struct pool {
 
 static void run_one(pool *p, cfg_out *o)
 {
-    const cf_run *run = p->run;
+    cf_run local = *p->run;
+    const cf_run *run = &local;
     cf_impl test, ref, *refp = NULL;
     int r, k;
+    if (o->samples) local.cfg.samples = o->samples;
     memset(&o->o, 0, sizeof o->o);
     o->o.status = CF_OK;
+    o->min_eps = -1;
     for (k = 0; k < CK_NCHECK; ++k) o->o.res[k].ok = -1;
     /* materia, the reference, in the implementation's transport */
     if (run->compare) {
@@ -113,6 +122,9 @@ static void run_one(pool *p, cfg_out *o)
         }
     }
     if (refp) ref.ops->close(&ref);
+    /* the smallest smooth mismatch its chi-squares could catch */
+    if (o->o.status == CF_OK && o->o.res[CK_CHI2].ok >= 0)
+        o->min_eps = cf_power_min_eps(o->o.nwo, o->o.pw_n, o->o.pw_dof, o->o.pw_v, run->cfg.alpha_test, 0.95);
     /* the reproducers of its failures */
     if (p->repro && o->o.status == CF_OK) {
         char msg[300];
@@ -149,7 +161,7 @@ static void usage(FILE *f, const char *argv0)
             "usage: %s --impl 'COMMAND' [--mode pbrt-v2|corrected] [--compare materia|none] [--catalog FILE]...\n"
             "       [--only REGEX] [--skip REGEX] [--check NAME] [--wo K] [--quick] [--samples N] [--cells N] [--significance P]\n"
             "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS]\n"
-            "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR]\n"
+            "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR] [--power EPS] [--seed S]\n"
             "       %s --impl-inprocess ...   materia itself, in this process, in place of COMMAND\n"
             "       %s --impl-lib PLUGIN.so [--impl-arg STRING] ...   a plugin (include/materia/impl.h)\n"
             "Runs the material-level suite through COMMAND (run by sh -c), a program that speaks the\n"
@@ -181,6 +193,11 @@ static void usage(FILE *f, const char *argv0)
             "  --timeout S    seconds allowed for each answer, > 0 and at most 1e6 (default 10)\n"
             "  --samples N    samples per incoming direction, 100 to 1e8 (default 40000; --quick 8000)\n"
             "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n"
+            "  --power EPS    samples per direction, for each configuration, so that its chi-squares catch a\n"
+            "                 smooth sampler/pdf mismatch of relative size EPS (0.001 to 0.5) in 95%% of runs\n"
+            "                 (docs/CONFORMANCE-SUITE.md, \"Power\"; at most 2e7; default: --samples)\n"
+            "  --seed S       another draw of every random number of the run, 1 to 2^63 (default: the\n"
+            "                 suite's own, 0)\n"
             "  --quick        the reduced set of make check: fewer configurations, directions, samples\n"
             "                 (default: not)\n"
             "  --threads N    configurations run at once, 1 to 16 (default: the number of processors)\n"
@@ -200,6 +217,8 @@ static void usage(FILE *f, const char *argv0)
 typedef struct opts {
     const char *command, *mode, *only, *data, *report, *plots, *compare, *check, *repro, *transport, *snum, *skip;
     const char *lib, *lib_arg;
+    double power;
+    long seed;
     const mt_impl_plugin *linked; /* mt_impl_run_suite's plugin */
     const char *catalogs[MAX_CATALOGS];
     int ncatalogs, quick, plots_all, cells, threads, inprocess, wo;
@@ -231,7 +250,7 @@ static int parse(int argc, char **argv, opts *o, const mt_impl_plugin *linked)
     static const char *const valued[] = {"--impl", "--mode", "--only", "--data", "--timeout", "--samples", "--cells",
                                          "--threads", "--report", "--plots", "--compare", "--check", "--wo",
                                          "--significance", "--transport", "--sample-numbers", "--repro", "--catalog",
-                                         "--skip", "--impl-lib", "--impl-arg"};
+                                         "--skip", "--impl-lib", "--impl-arg", "--power", "--seed"};
     enum { V_CATALOG = 17 };
     const char *sv[sizeof valued / sizeof valued[0]] = {NULL}; /* their values, in that order */
     size_t k, nv = sizeof valued / sizeof valued[0];
@@ -353,6 +372,19 @@ static int parse(int argc, char **argv, opts *o, const mt_impl_plugin *linked)
         }
     }
     if (sv[5] && whole(argv[0], "--samples", sv[5], 100, 100000000, &o->samples)) return 2;
+    if (sv[21]) {
+        char *e;
+        o->power = strtod(sv[21], &e);
+        if (e == sv[21] || *e || !(o->power >= 0.001) || !(o->power <= 0.5)) {
+            fprintf(stderr, "%s: --power: \"%s\" is not a relative size of 0.001 to 0.5\n", argv[0], sv[21]);
+            return 2;
+        }
+        if (sv[5]) {
+            fprintf(stderr, "%s: --power and --samples both set the samples: give one\n", argv[0]);
+            return 2;
+        }
+    }
+    if (sv[22] && whole(argv[0], "--seed", sv[22], 0, 0x7fffffffffffffffL, &o->seed)) return 2;
     if (sv[6]) {
         if (whole(argv[0], "--cells", sv[6], 4, 200, &x)) return 2;
         o->cells = (int)x;
@@ -572,6 +604,19 @@ static void print_rows(const cfg_out *out, int n, const char *mode, totals *t)
                        r->worst[w].got, r->worst[w].score);
             if (o->repro[k][0]) printf("      repro: %s\n", o->repro[k]);
         }
+        if (o->min_eps >= 0) {
+            char pw[200];
+            long ns = o->samples ? o->samples : 0;
+            int j;
+            for (j = 0; !ns && j < o->o.nwo; ++j) ns = o->o.pw_n[j];
+            if (o->min_eps >= 1)
+                snprintf(pw, sizeof pw, "no smooth sampler/pdf mismatch below 100%% is caught in 95%% of runs (%ld samples per "
+                         "direction)", ns);
+            else
+                snprintf(pw, sizeof pw, "a smooth sampler/pdf mismatch of %.3g%% is caught in 95%% of runs (%ld samples per "
+                         "direction)", 100 * o->min_eps, ns);
+            printf("%-5s %-50s %-9s %-15s %-9s %s\n", "POWER", o->c.name, mode, "chi2", "physics", pw);
+        }
         if (o->o.no_agreement[0])
             printf("%-5s %-50s %-9s %-15s %-9s physics only: materia cannot build it (%s)\n", "INFO", o->c.name, mode,
                    "agreement", "agreement", o->o.no_agreement);
@@ -637,7 +682,7 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
     const mt_impl_plugin *plugin = NULL;
     void *dl = NULL, *pstate = NULL;
     const char *what; /* the implementation, in the header and the report */
-    char whatbuf[4200];
+    char whatbuf[4200], nsamp[80];
     if ((i = parse(argc, argv, &op, linked))) return i == 1 ? 0 : 2;
     p.out = NULL;
     p.n = 0;
@@ -792,6 +837,16 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
         free(sel);
     }
     run.cfg.alpha_test = op.significance > 0 ? op.significance : cf_sidak(run.cfg.alpha, run.cfg.tests);
+    cf_set_run_seed((uint64_t)op.seed);
+    /* --power: each configuration's samples from its directions and cells */
+    if (op.power > 0)
+        for (i = 0; i < nsel; ++i) {
+            cf_v3 wo[CF_MAX_WO];
+            int nwo = cf_case_wo(&p.out[i].c, op.quick, wo);
+            p.out[i].samples = cf_power_samples(op.power, nwo, run.cfg.nphi * run.cfg.nz, run.cfg.nz, run.cfg.alpha_test,
+                                                0.95, POWER_MAX_SAMPLES);
+            if (p.out[i].samples < 100) p.out[i].samples = 100;
+        }
     /* the command line a reproducer re-runs with */
     {
         size_t at = 0;
@@ -816,8 +871,13 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
         if (op.quick) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --quick");
         if (op.transport) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --transport %s", op.transport);
         if (op.snum) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --sample-numbers %s", op.snum);
-        snprintf(rerun + at, sizeof rerun - at, " --samples %ld --cells %d --significance %.6g --timeout %g",
-                 run.cfg.samples, run.cfg.nphi, run.cfg.alpha_test, op.timeout);
+        if (op.power > 0)
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --power %g", op.power);
+        else
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --samples %ld", run.cfg.samples);
+        if (op.seed) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --seed %ld", op.seed);
+        snprintf(rerun + at, sizeof rerun - at, " --cells %d --significance %.6g --timeout %g", run.cfg.nphi,
+                 run.cfg.alpha_test, op.timeout);
     }
     repro.dir = op.repro;
     repro.rerun = rerun;
@@ -828,10 +888,13 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
         snprintf(whatbuf, sizeof whatbuf, "plugin %.4000s", op.lib ? op.lib : "(linked)"), what = whatbuf;
     else
         snprintf(whatbuf, sizeof whatbuf, "'%.4000s'", op.command), what = whatbuf;
-    printf("materia-conformance --impl %s (materia %s build, mode %s, compare %s): %d configurations, %ld samples "
-           "per direction,\n%d x %d cells at most, %ld statistical tests, each at %.3g (Sidak: %.2g for the whole run)%s, "
+    if (op.power > 0)
+        snprintf(nsamp, sizeof nsamp, "samples per direction set by --power %g", op.power);
+    else
+        snprintf(nsamp, sizeof nsamp, "%ld samples per direction", run.cfg.samples);
+    printf("materia-conformance --impl %s (materia %s build, mode %s, compare %s): %d configurations, %s%s,\n%d x %d cells at most, %ld statistical tests, each at %.3g (Sidak: %.2g for the whole run)%s, "
            "%g s per answer\nimplementation: %s; conventions: %s (%s)\n",
-           what, mt_precision(), op.mode, op.compare, nsel, run.cfg.samples, run.cfg.nphi, run.cfg.nz, run.cfg.tests,
+           what, mt_precision(), op.mode, op.compare, nsel, nsamp, op.seed ? ", seeded" : "", run.cfg.nphi, run.cfg.nz, run.cfg.tests,
            run.cfg.alpha_test, run.cfg.alpha, op.significance > 0 ? " [--significance]" : "", op.timeout, impl_name, cv,
            op.transport || op.snum ? "set on the command line" : declared ? "its answer" : "pbrt-v2's: it answers no conventions");
     fflush(stdout);
