@@ -256,6 +256,7 @@ $(BUILD)/tests/plugin-linked: $(BUILD)/obj/tests/plugin_linked.o $(BUILD)/obj/pl
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(CONF_LIB) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
 tests: $(PLUGINS)
+$(BUILD)/bench/plugin: $(BUILD)/plugins/materia_plugin.so
 
 $(IMPL_WRONG): $(BUILD)/obj/tests/impl_wrong.o $(STATIC_LIB)
 	@mkdir -p $(dir $@)

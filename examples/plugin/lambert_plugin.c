@@ -134,7 +134,8 @@ static int l_open(void *state, const char *mode, const char *const *lines, int n
 {
     lambert *l = calloc(1, sizeof *l);
     double ng[3] = {0, 0, 1};
-    int i, r = MT_IMPL_OK, have = 0;
+    int i, r = MT_IMPL_OK, have = 0, rm = MT_IMPL_OK;
+    char mmsg[256] = "";
     (void)state;
     (void)mode; /* a Lambertian is the same in pbrt-v2's mode and corrected */
     *config = NULL;
@@ -147,8 +148,9 @@ static int l_open(void *state, const char *mode, const char *const *lines, int n
     for (i = 0; i < nlines && r == MT_IMPL_OK; ++i) {
         const char *s = lines[i];
         while (isspace((unsigned char)*s)) s++;
-        if (!strncmp(s, "Material ", 9)) {
-            r = material(l, s, msg, msg_size);
+        if (!strncmp(s, "Material ", 9)) { /* the last one is the material, as in a scene */
+            l->kd[0] = l->kd[1] = l->kd[2] = 0.5;
+            rm = material(l, s, mmsg, sizeof mmsg);
             have = 1;
         } else if (!strncmp(s, "at ", 3)) {
             r = at(l, s, ng, msg, msg_size);
@@ -156,6 +158,10 @@ static int l_open(void *state, const char *mode, const char *const *lines, int n
             snprintf(msg, msg_size, "statement \"%.60s\" (this example takes one Material line)", s);
             r = MT_IMPL_UNSUPPORTED;
         }
+    }
+    if (r == MT_IMPL_OK && rm != MT_IMPL_OK) {
+        snprintf(msg, msg_size, "%s", mmsg);
+        r = rm;
     }
     if (r == MT_IMPL_OK && !have) {
         snprintf(msg, msg_size, "no Material");
