@@ -30,6 +30,7 @@ typedef struct cfg_out {
     char repro[CK_NCHECK][2048];
     long samples;   /* --power: its samples per direction (0: the run's) */
     double min_eps; /* the smallest smooth mismatch it catches in 95% of runs (1: none), or -1 */
+    long queries;   /* eval and sample queries the implementation answered */
 } cfg_out;
 
 typedef struct pool {
@@ -89,6 +90,7 @@ static void run_one(pool *p, cfg_out *o)
         o->o.status = r == CF_UNSUPPORTED ? CF_UNSUPPORTED : r == CF_NOMEM ? CF_NOMEM : CF_FAILED;
         snprintf(o->o.msg, sizeof o->o.msg, "%s", r == CF_NOMEM && !test.msg[0] ? "out of memory" : test.msg);
     }
+    o->queries = test.queries;
     if (test.ops->close(&test) && !r) {
         o->o.status = CF_FAILED;
         snprintf(o->o.msg, sizeof o->o.msg, "%s", test.msg);
@@ -554,8 +556,13 @@ static int write_report(const char *path, const cf_run *run, const char *command
             fprintf(f, "]}");
         }
     }
+    {
+        long q = 0;
+        for (i = 0; i < n; ++i) q += out[i].queries;
+        fprintf(f, "\n  ],\n  \"queries\": %ld,", q);
+    }
     fprintf(f,
-            "\n  ],\n  \"physics\": {\"passed\": %d, \"failed\": %d, \"expected_failures\": %d},\n"
+            "\n  \"physics\": {\"passed\": %d, \"failed\": %d, \"expected_failures\": %d},\n"
             "  \"agreement\": {\"passed\": %d, \"failed\": %d},\n  \"skipped\": %d,\n"
             "  \"passed\": %d,\n  \"failed\": %d,\n  \"expected_failures\": %d\n}\n",
             t->passed[0], t->failed[0], t->xfailed, t->passed[1], t->failed[1], t->skipped, t->passed[0] + t->passed[1],
