@@ -295,7 +295,7 @@ typedef struct cf_outcome {
     /* the chi-square of each direction, for its power (power.c): samples,
      * degrees of freedom, the reference mismatch's shape over its cells */
     long pw_n[CF_MAX_WO], pw_dof[CF_MAX_WO];
-    double pw_v[CF_MAX_WO];
+    double pw_v[CF_MAX_WO], pw_vcos[CF_MAX_WO]; /* the sampler warp's, the pdf shape's */
 } cf_outcome;
 
 /* Runs the checks of c on test (opened on c), against ref (materia opened

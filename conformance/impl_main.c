@@ -30,6 +30,7 @@ typedef struct cfg_out {
     char repro[CK_NCHECK][2048];
     long samples;   /* --power: its samples per direction (0: the run's) */
     double min_eps; /* the smallest smooth mismatch it catches in 95% of runs (1: none), or -1 */
+    double min_eps_cos; /* the same for a pdf shape linear in |cos theta_i| */
     long queries;   /* eval and sample queries the implementation answered */
 } cfg_out;
 
@@ -126,7 +127,10 @@ static void run_one(pool *p, cfg_out *o)
     if (refp) ref.ops->close(&ref);
     /* the smallest smooth mismatch its chi-squares could catch */
     if (o->o.status == CF_OK && o->o.res[CK_CHI2].ok >= 0)
+    {
         o->min_eps = cf_power_min_eps(o->o.nwo, o->o.pw_n, o->o.pw_dof, o->o.pw_v, run->cfg.alpha_test, 0.95);
+        o->min_eps_cos = cf_power_min_eps(o->o.nwo, o->o.pw_n, o->o.pw_dof, o->o.pw_vcos, run->cfg.alpha_test, 0.95);
+    }
     /* the reproducers of its failures */
     if (p->repro && o->o.status == CF_OK) {
         char msg[300];
@@ -612,16 +616,20 @@ static void print_rows(const cfg_out *out, int n, const char *mode, totals *t)
             if (o->repro[k][0]) printf("      repro: %s\n", o->repro[k]);
         }
         if (o->min_eps >= 0) {
-            char pw[200];
+            char pw[300], pc[60];
             long ns = o->samples ? o->samples : 0;
             int j;
             for (j = 0; !ns && j < o->o.nwo; ++j) ns = o->o.pw_n[j];
+            if (o->min_eps_cos >= 1)
+                snprintf(pc, sizeof pc, "none below 100%%");
+            else
+                snprintf(pc, sizeof pc, "%.3g%%", 100 * o->min_eps_cos);
             if (o->min_eps >= 1)
                 snprintf(pw, sizeof pw, "no smooth sampler/pdf mismatch below 100%% is caught in 95%% of runs (%ld samples per "
                          "direction)", ns);
             else
-                snprintf(pw, sizeof pw, "a smooth sampler/pdf mismatch of %.3g%% is caught in 95%% of runs (%ld samples per "
-                         "direction)", 100 * o->min_eps, ns);
+                snprintf(pw, sizeof pw, "a smooth sampler/pdf mismatch of %.3g%% is caught in 95%% of runs; a pdf shape in "
+                         "cos theta_i, %s (%ld samples per direction)", 100 * o->min_eps, pc, ns);
             printf("%-5s %-50s %-9s %-15s %-9s %s\n", "POWER", o->c.name, mode, "chi2", "physics", pw);
         }
         if (o->o.no_agreement[0])

@@ -436,6 +436,7 @@ static void chi2_of(cf_ctx *x, acc *a, int which, cf_wo_data *d, const cf_layout
         x->out->pw_n[d->index] = d->n;
         x->out->pw_dof[d->index] = c2.dof;
         x->out->pw_v[d->index] = cf_power_shape(l, pdfc);
+        x->out->pw_vcos[d->index] = cf_power_shape_cos(l, pdfc);
     }
     if (c2.hard) a->chi[which].hard = 1;
     if (c2.p < a->chi[which].min_p) {

@@ -66,6 +66,28 @@ double cf_power_shape(const cf_layout *l, const double *pdfc)
     return v;
 }
 
+double cf_power_shape_cos(const cf_layout *l, const double *pdfc)
+{
+    double total = 0, m = 0, v = 0;
+    int r, c, pass;
+    for (pass = 0; pass < 2; ++pass)
+        for (r = 0; r < l->nrow; ++r) {
+            double pr = 0, a = fabs(l->z[r]), b = fabs(l->z[r + 1]);
+            /* the mean of |z| over the row, at its middle (a row that
+             * crosses the horizon: its two halves) */
+            double mid = l->z[r] < 0 && l->z[r + 1] > 0 ? (a * a + b * b) / (2 * (a + b)) : 0.5 * (a + b);
+            for (c = l->first[r]; c < l->first[r + 1]; ++c) pr += pdfc[c] > 0 ? pdfc[c] : 0;
+            if (!pass) {
+                total += pr;
+                m += pr * mid;
+            } else {
+                v += pr * (mid - m) * (mid - m);
+            }
+            if (!pass && r == l->nrow - 1 && total > 0) m /= total;
+        }
+    return total > 0 ? v : 0;
+}
+
 /* The probability of catching eps. */
 static double catch_prob(double eps, int nwo, const long *n, const long *dof, const double *v, double alpha)
 {

@@ -24,6 +24,11 @@ double cf_chi2_upper_quantile(double alpha, double dof);
  * the sum over rows of P_r g_r^2, g_r the mean of g over row r. */
 double cf_power_shape(const cf_layout *l, const double *pdfc);
 
+/* The same for a pdf whose shape is off by 1 + eps (|cos theta_i| - m), m
+ * the mean of |cos theta_i| under it (the row's mean of |z| taken at its
+ * middle): weaker than the warp where the lobe is narrow in cos theta_i. */
+double cf_power_shape_cos(const cf_layout *l, const double *pdfc);
+
 /* The smallest eps a configuration catches with probability want: its
  * directions' samples n[w], degrees of freedom dof[w] and shapes v[w]
  * (directions with dof 0 or v 0 see nothing), each test at alpha; caught
