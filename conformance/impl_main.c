@@ -198,7 +198,10 @@ static void usage(FILE *f, const char *argv0)
             "                 temporary directory); they reach COMMAND as absolute paths\n"
             "  --timeout S    seconds allowed for each answer, > 0 and at most 1e6 (default 10)\n"
             "  --samples N    samples per incoming direction, 100 to 1e8 (default 40000; --quick 8000)\n"
-            "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n"
+            "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n",
+            argv0, argv0, argv0);
+    /* two strings: a C99 compiler need take no more than 4095 characters in one */
+    fprintf(f,
             "  --power EPS    samples per direction, for each configuration, so that its chi-squares catch a\n"
             "                 smooth sampler/pdf mismatch of relative size EPS (0.001 to 0.5) in 95%% of runs\n"
             "                 (docs/CONFORMANCE-SUITE.md, \"Power\"; at most 2e7; default: --samples)\n"
@@ -215,8 +218,7 @@ static void usage(FILE *f, const char *argv0)
             "  --help, -h     this help\n"
             "  --version      materia's version and precision\n"
             "Each option is given once (--catalog as often as needed); a value may not begin with \"--\".\n"
-            "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n",
-            argv0, argv0, argv0);
+            "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n");
 }
 
 /* The command line of --impl, read. */
