@@ -326,8 +326,9 @@ static int parse(int argc, char **argv, opts *o, const mt_impl_plugin *linked)
     o->lib_arg = sv[20];
     if ((o->inprocess != 0) + (o->command != NULL) + (o->lib != NULL) + (linked != NULL) > 1) {
         fprintf(stderr, "%s: %s name two implementations: give one\n", argv[0],
-                linked ? "the linked plugin and --impl, --impl-lib or --impl-inprocess"
-                       : "--impl, --impl-lib and --impl-inprocess");
+                linked  ? "the linked plugin and --impl, --impl-lib or --impl-inprocess"
+                : o->lib ? "--impl-lib and --impl or --impl-inprocess"
+                         : "--impl and --impl-inprocess");
         return 2;
     }
     if (o->lib_arg && !o->lib && !linked) {
