@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "materia/config.h"
 #include "materia/impl.h"
 
 #define MAX_LINES 256
@@ -251,6 +252,10 @@ int main(int argc, char **argv)
                    "Exit status: 0 at the end of input, 1 when output failed, 2 bad usage or a plugin\n"
                    "that cannot be loaded.\n",
                    argv[0]);
+            return 0;
+        }
+        if (!strcmp(argv[i], "--version")) {
+            printf("materia-plugin-host (materia) %s, interface version %d\n", MT_VERSION, MT_IMPL_ABI);
             return 0;
         }
         if (!strcmp(argv[i], "--arg") && i + 1 < argc && !arg)
