@@ -247,6 +247,32 @@ $(IMPL_OTHER): $(BUILD)/obj/tests/impl_other.o
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< -lm
 
+# The in-process implementation interface (include/materia/impl.h):
+# materia's own BSDFs as a plugin, the C example, a plugin with planted
+# errors (tests/plugin_planted.c), and a program that links a plugin and
+# runs the suite on it (mt_impl_run_suite). A plugin is the static
+# library's position-independent objects in one shared object that exports
+# its entry point alone (-Bsymbolic: its own materia, whatever loads it).
+PLUGINS := $(BUILD)/plugins/materia_plugin.so $(BUILD)/plugins/lambert_plugin.so $(BUILD)/tests/plugin_planted.so \
+           $(BUILD)/tests/plugin-linked
+PLUGIN_LINK = $(CC) -shared -Wl,-Bsymbolic $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) \
+              $(if $(filter %.a,$^),$(STATIC_LIB) $(MT_LDLIBS)) $(LDLIBS) -lm
+$(BUILD)/plugins/materia_plugin.so: $(BUILD)/obj/plugins/materia_plugin.o $(BUILD)/obj/plugins/materia_entry.o $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(PLUGIN_LINK)
+$(BUILD)/plugins/lambert_plugin.so: $(BUILD)/obj/examples/plugin/lambert_plugin.o
+	@mkdir -p $(dir $@)
+	$(PLUGIN_LINK)
+$(BUILD)/tests/plugin_planted.so: $(BUILD)/obj/tests/plugin_planted.o $(BUILD)/obj/plugins/materia_plugin.o $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(PLUGIN_LINK)
+$(BUILD)/tests/plugin-linked: $(BUILD)/obj/tests/plugin_linked.o $(BUILD)/obj/plugins/materia_plugin.o $(TSUP_OBJ) \
+                              $(CONF_LIB) $(STATIC_LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $(filter %.o,$^) $(CONF_LIB) $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)
+tests: $(PLUGINS)
+$(BUILD)/bench/plugin: $(BUILD)/plugins/materia_plugin.so
+
 $(IMPL_WRONG): $(BUILD)/obj/tests/impl_wrong.o $(STATIC_LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(NO_LTO) $(ALL_LDFLAGS) -o $@ $< $(STATIC_LIB) $(MT_LDLIBS) $(LDLIBS)

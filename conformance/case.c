@@ -108,10 +108,20 @@ int cf_case_wo(const cf_case *c, int quick, cf_v3 *wo)
     return n;
 }
 
+static uint64_t run_seed;
+
+void cf_set_run_seed(uint64_t seed) { run_seed = seed; }
+
 uint64_t cf_seed(const char *name, int k)
 {
     uint64_t s = 0x9e3779b97f4a7c15ULL * (uint64_t)(k + 1);
     for (; *name; ++name) s = s * 31 + (unsigned char)*name;
+    if (run_seed) { /* a seeded run: every stream moved by a mix of the seed (splitmix64's finalizer) */
+        uint64_t z = run_seed * 0x9e3779b97f4a7c15ULL;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        s ^= z ^ (z >> 31);
+    }
     return s;
 }
 

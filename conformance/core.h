@@ -137,6 +137,8 @@ struct cf_impl {
     const char *mode_line;
     void *q;             /* materia: its mt_query session */
     mt_arena *arena;
+    const struct mt_impl_plugin *plugin; /* a plugin (backend_lib.c): its table, state, configuration */
+    void *plugin_state, *plugin_cfg;
 };
 
 /* materia's own BSDFs in this process (its mt_query session, or a
@@ -144,6 +146,13 @@ struct cf_impl {
 void cf_impl_materia(cf_impl *im, mt_mode mode);
 /* A child process running command (sh -c) that speaks the protocol. */
 void cf_impl_child(cf_impl *im, mt_mode mode, const char *command, double timeout);
+/* A plugin (include/materia/impl.h) in this process, its state made by
+ * its create (backend_lib.c). */
+void cf_impl_lib(cf_impl *im, mt_mode mode, const struct mt_impl_plugin *plugin, void *state);
+/* A plugin's declarations read as a protocol speaker's (cf_impl_probe):
+ * 0, or -1 and msg. */
+int cf_impl_lib_probe(const struct mt_impl_plugin *plugin, cf_conventions *conv, int *declared, double *eps, char *name,
+                      size_t nn, char *msg, size_t nm);
 /* Asks a protocol speaker its version and conventions (a child of its
  * own). 0, or -1 and msg. name gets "NAME VERSION precision P". */
 int cf_impl_probe(const char *command, double timeout, cf_conventions *conv, int *declared, double *eps,
@@ -283,6 +292,10 @@ typedef struct cf_outcome {
     cf_v3 wo[CF_MAX_WO];
     cf_layout layout[CF_MAX_WO]; /* the cells of each direction (ncell 0: none) */
     double eta;                 /* the relative index found (Snell or reciprocity), or 0 */
+    /* the chi-square of each direction, for its power (power.c): samples,
+     * degrees of freedom, the reference mismatch's shape over its cells */
+    long pw_n[CF_MAX_WO], pw_dof[CF_MAX_WO];
+    double pw_v[CF_MAX_WO], pw_vcos[CF_MAX_WO]; /* the sampler warp's, the pdf shape's */
 } cf_outcome;
 
 /* Runs the checks of c on test (opened on c), against ref (materia opened
@@ -297,8 +310,11 @@ void cf_outcome_free(cf_outcome *o);
  * queries) failed too; 1 when the same way (impl_xfail.c). */
 int cf_same_failure(double alpha_test, const cf_result *test, const cf_result *mine, char *note, size_t n);
 
-/* The seed of configuration name's k-th stream (direction, pairs, ...). */
+/* The seed of configuration name's k-th stream (direction, pairs, ...),
+ * in the run's seeded variant (--seed S; 0, the default, is the suite's
+ * own numbers). cf_set_run_seed is called once, before the run. */
 uint64_t cf_seed(const char *name, int k);
+void cf_set_run_seed(uint64_t seed);
 /* A uniform number in [0, 1) as the float a query line carries. */
 float cf_u_float(mt_rng *rng);
 /* The random numbers of the main samples of direction w (n of them), and

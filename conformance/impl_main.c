@@ -5,6 +5,7 @@
  * costs only its own checks), the expected failures of pbrt-v2 mode, the
  * table, --repro files and the JSON report. See docs/CONFORMANCE-SUITE.md.
  */
+#include <dlfcn.h>
 #include <errno.h>
 #include <pthread.h>
 #include <regex.h>
@@ -14,7 +15,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "impl.h"
+#include "materia/impl.h"
+#include "power.h"
 
+/* --power's samples per direction at most: the pass keeps each
+ * direction's samples in memory (about 100 bytes each) */
+#define POWER_MAX_SAMPLES 20000000L
 /* the configurations a --catalog FILE may hold */
 #define MAX_CATALOGS 16
 
@@ -22,13 +28,19 @@ typedef struct cfg_out {
     cf_case c;
     cf_outcome o;
     char repro[CK_NCHECK][2048];
+    long samples;   /* --power: its samples per direction (0: the run's) */
+    double min_eps; /* the smallest smooth mismatch it catches in 95% of runs (1: none), or -1 */
+    double min_eps_cos; /* the same for a pdf shape linear in |cos theta_i| */
+    long queries;   /* eval and sample queries the implementation answered */
 } cfg_out;
 
 typedef struct pool {
     cfg_out *out;
     int n, next, hangs;
     const cf_run *run;
-    const char *command; /* NULL: materia in this process */
+    const char *command; /* NULL: materia in this process, or the plugin */
+    const mt_impl_plugin *plugin;
+    void *plugin_state;
     double timeout;
     cf_conventions conv;
     double eps;
@@ -38,11 +50,14 @@ typedef struct pool {
 
 static void run_one(pool *p, cfg_out *o)
 {
-    const cf_run *run = p->run;
+    cf_run local = *p->run;
+    const cf_run *run = &local;
     cf_impl test, ref, *refp = NULL;
     int r, k;
+    if (o->samples) local.cfg.samples = o->samples;
     memset(&o->o, 0, sizeof o->o);
     o->o.status = CF_OK;
+    o->min_eps = -1;
     for (k = 0; k < CK_NCHECK; ++k) o->o.res[k].ok = -1;
     /* materia, the reference, in the implementation's transport */
     if (run->compare) {
@@ -63,10 +78,12 @@ static void run_one(pool *p, cfg_out *o)
     }
     if (p->command)
         cf_impl_child(&test, run->mode, p->command, p->timeout);
+    else if (p->plugin)
+        cf_impl_lib(&test, run->mode, p->plugin, p->plugin_state);
     else
         cf_impl_materia(&test, run->mode);
     test.conv = p->conv;
-    if (p->command) test.eps = p->eps;
+    if (p->command || p->plugin) test.eps = p->eps;
     r = test.ops->open(&test, &o->c);
     if (!r) r = cf_run_case(run, &o->c, &test, refp, NULL, &o->o);
     o->o.agreement = refp != NULL;
@@ -74,6 +91,7 @@ static void run_one(pool *p, cfg_out *o)
         o->o.status = r == CF_UNSUPPORTED ? CF_UNSUPPORTED : r == CF_NOMEM ? CF_NOMEM : CF_FAILED;
         snprintf(o->o.msg, sizeof o->o.msg, "%s", r == CF_NOMEM && !test.msg[0] ? "out of memory" : test.msg);
     }
+    o->queries = test.queries;
     if (test.ops->close(&test) && !r) {
         o->o.status = CF_FAILED;
         snprintf(o->o.msg, sizeof o->o.msg, "%s", test.msg);
@@ -107,6 +125,12 @@ static void run_one(pool *p, cfg_out *o)
         }
     }
     if (refp) ref.ops->close(&ref);
+    /* the smallest smooth mismatch its chi-squares could catch */
+    if (o->o.status == CF_OK && o->o.res[CK_CHI2].ok >= 0)
+    {
+        o->min_eps = cf_power_min_eps(o->o.nwo, o->o.pw_n, o->o.pw_dof, o->o.pw_v, run->cfg.alpha_test, 0.95);
+        o->min_eps_cos = cf_power_min_eps(o->o.nwo, o->o.pw_n, o->o.pw_dof, o->o.pw_vcos, run->cfg.alpha_test, 0.95);
+    }
     /* the reproducers of its failures */
     if (p->repro && o->o.status == CF_OK) {
         char msg[300];
@@ -143,12 +167,16 @@ static void usage(FILE *f, const char *argv0)
             "usage: %s --impl 'COMMAND' [--mode pbrt-v2|corrected] [--compare materia|none] [--catalog FILE]...\n"
             "       [--only REGEX] [--skip REGEX] [--check NAME] [--wo K] [--quick] [--samples N] [--cells N] [--significance P]\n"
             "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS]\n"
-            "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR]\n"
+            "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR] [--power EPS] [--seed S]\n"
             "       %s --impl-inprocess ...   materia itself, in this process, in place of COMMAND\n"
+            "       %s --impl-lib PLUGIN.so [--impl-arg STRING] ...   a plugin (include/materia/impl.h)\n"
             "Runs the material-level suite through COMMAND (run by sh -c), a program that speaks the\n"
             "query protocol of materia-query on its standard input and output.\n"
             "  --impl COMMAND the implementation (required, or --impl-inprocess)\n"
             "  --impl-inprocess  materia itself in this process, instead of COMMAND\n"
+            "  --impl-lib P   a plugin (a shared object filling include/materia/impl.h), loaded into this\n"
+            "                 process and called in batches, instead of COMMAND\n"
+            "  --impl-arg S   with --impl-lib: the string its create() receives (default: none)\n"
             "  --mode M       pbrt-v2 or corrected (corrected, the default: a renderer is compared with the\n"
             "                 physics; every other tool defaults to pbrt-v2)\n"
             "  --compare C    materia (the default): the agreement checks against materia run too;\n"
@@ -170,7 +198,15 @@ static void usage(FILE *f, const char *argv0)
             "                 temporary directory); they reach COMMAND as absolute paths\n"
             "  --timeout S    seconds allowed for each answer, > 0 and at most 1e6 (default 10)\n"
             "  --samples N    samples per incoming direction, 100 to 1e8 (default 40000; --quick 8000)\n"
-            "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n"
+            "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n",
+            argv0, argv0, argv0);
+    /* two strings: a C99 compiler need take no more than 4095 characters in one */
+    fprintf(f,
+            "  --power EPS    samples per direction, for each configuration, so that its chi-squares catch a\n"
+            "                 smooth sampler/pdf mismatch of relative size EPS (0.001 to 0.5) in 95%% of runs\n"
+            "                 (docs/CONFORMANCE-SUITE.md, \"Power\"; at most 2e7; default: --samples)\n"
+            "  --seed S       another draw of every random number of the run, 1 to 2^63 (default: the\n"
+            "                 suite's own, 0)\n"
             "  --quick        the reduced set of make check: fewer configurations, directions, samples\n"
             "                 (default: not)\n"
             "  --threads N    configurations run at once, 1 to 16 (default: the number of processors)\n"
@@ -182,13 +218,16 @@ static void usage(FILE *f, const char *argv0)
             "  --help, -h     this help\n"
             "  --version      materia's version and precision\n"
             "Each option is given once (--catalog as often as needed); a value may not begin with \"--\".\n"
-            "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n",
-            argv0, argv0);
+            "Exit status: 0 every check passed, 1 a check failed, 2 bad usage.\n");
 }
 
 /* The command line of --impl, read. */
 typedef struct opts {
     const char *command, *mode, *only, *data, *report, *plots, *compare, *check, *repro, *transport, *snum, *skip;
+    const char *lib, *lib_arg;
+    double power;
+    long seed;
+    const mt_impl_plugin *linked; /* mt_impl_run_suite's plugin */
     const char *catalogs[MAX_CATALOGS];
     int ncatalogs, quick, plots_all, cells, threads, inprocess, wo;
     long samples;
@@ -214,12 +253,12 @@ static int whole(const char *argv0, const char *opt, const char *v, long lo, lon
  * (status 0), 2 on a usage error (the message names the option). Every
  * option that takes a value must have one that is not itself an option:
  * "--impl --help" asks for this help, not for the command "--help". */
-static int parse(int argc, char **argv, opts *o)
+static int parse(int argc, char **argv, opts *o, const mt_impl_plugin *linked)
 {
     static const char *const valued[] = {"--impl", "--mode", "--only", "--data", "--timeout", "--samples", "--cells",
                                          "--threads", "--report", "--plots", "--compare", "--check", "--wo",
                                          "--significance", "--transport", "--sample-numbers", "--repro", "--catalog",
-                                         "--skip"};
+                                         "--skip", "--impl-lib", "--impl-arg", "--power", "--seed"};
     enum { V_CATALOG = 17 };
     const char *sv[sizeof valued / sizeof valued[0]] = {NULL}; /* their values, in that order */
     size_t k, nv = sizeof valued / sizeof valued[0];
@@ -227,6 +266,7 @@ static int parse(int argc, char **argv, opts *o)
     long x;
     memset(o, 0, sizeof *o);
     o->wo = -1;
+    o->linked = linked;
     for (i = 1; i < argc; ++i)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout, argv[0]);
@@ -282,11 +322,24 @@ static int parse(int argc, char **argv, opts *o)
     o->snum = sv[15];
     o->repro = sv[16];
     o->skip = sv[18];
-    if (o->inprocess && o->command) {
-        fprintf(stderr, "%s: --impl and --impl-inprocess name two implementations: give one\n", argv[0]);
+    o->lib = sv[19];
+    o->lib_arg = sv[20];
+    if ((o->inprocess != 0) + (o->command != NULL) + (o->lib != NULL) + (linked != NULL) > 1) {
+        fprintf(stderr, "%s: %s name two implementations: give one\n", argv[0],
+                linked  ? "the linked plugin and --impl, --impl-lib or --impl-inprocess"
+                : o->lib ? "--impl-lib and --impl or --impl-inprocess"
+                         : "--impl and --impl-inprocess");
         return 2;
     }
-    if (!o->inprocess && (!o->command || !o->command[strspn(o->command, " \t\n")])) {
+    if (o->lib_arg && !o->lib && !linked) {
+        fprintf(stderr, "%s: --impl-arg needs --impl-lib\n", argv[0]);
+        return 2;
+    }
+    if (o->lib && !o->lib[0]) {
+        fprintf(stderr, "%s: --impl-lib needs the path of a shared object\n", argv[0]);
+        return 2;
+    }
+    if (!o->inprocess && !o->lib && !linked && (!o->command || !o->command[strspn(o->command, " \t\n")])) {
         fprintf(stderr, "%s: --impl needs a command (the program to test, run by sh -c)\n", argv[0]);
         return 2;
     }
@@ -328,6 +381,19 @@ static int parse(int argc, char **argv, opts *o)
         }
     }
     if (sv[5] && whole(argv[0], "--samples", sv[5], 100, 100000000, &o->samples)) return 2;
+    if (sv[21]) {
+        char *e;
+        o->power = strtod(sv[21], &e);
+        if (e == sv[21] || *e || !(o->power >= 0.001) || !(o->power <= 0.5)) {
+            fprintf(stderr, "%s: --power: \"%s\" is not a relative size of 0.001 to 0.5\n", argv[0], sv[21]);
+            return 2;
+        }
+        if (sv[5]) {
+            fprintf(stderr, "%s: --power and --samples both set the samples: give one\n", argv[0]);
+            return 2;
+        }
+    }
+    if (sv[22] && whole(argv[0], "--seed", sv[22], 0, 0x7fffffffffffffffL, &o->seed)) return 2;
     if (sv[6]) {
         if (whole(argv[0], "--cells", sv[6], 4, 200, &x)) return 2;
         o->cells = (int)x;
@@ -497,8 +563,13 @@ static int write_report(const char *path, const cf_run *run, const char *command
             fprintf(f, "]}");
         }
     }
+    {
+        long q = 0;
+        for (i = 0; i < n; ++i) q += out[i].queries;
+        fprintf(f, "\n  ],\n  \"queries\": %ld,", q);
+    }
     fprintf(f,
-            "\n  ],\n  \"physics\": {\"passed\": %d, \"failed\": %d, \"expected_failures\": %d},\n"
+            "\n  \"physics\": {\"passed\": %d, \"failed\": %d, \"expected_failures\": %d},\n"
             "  \"agreement\": {\"passed\": %d, \"failed\": %d},\n  \"skipped\": %d,\n"
             "  \"passed\": %d,\n  \"failed\": %d,\n  \"expected_failures\": %d\n}\n",
             t->passed[0], t->failed[0], t->xfailed, t->passed[1], t->failed[1], t->skipped, t->passed[0] + t->passed[1],
@@ -547,13 +618,68 @@ static void print_rows(const cfg_out *out, int n, const char *mode, totals *t)
                        r->worst[w].got, r->worst[w].score);
             if (o->repro[k][0]) printf("      repro: %s\n", o->repro[k]);
         }
+        if (o->min_eps >= 0) {
+            char pw[300], pc[60];
+            long ns = o->samples ? o->samples : 0;
+            int j;
+            for (j = 0; !ns && j < o->o.nwo; ++j) ns = o->o.pw_n[j];
+            if (o->min_eps_cos >= 1)
+                snprintf(pc, sizeof pc, "none below 100%%");
+            else
+                snprintf(pc, sizeof pc, "%.3g%%", 100 * o->min_eps_cos);
+            if (o->min_eps >= 1)
+                snprintf(pw, sizeof pw, "no smooth sampler/pdf mismatch below 100%% is caught in 95%% of runs (%ld samples per "
+                         "direction)", ns);
+            else
+                snprintf(pw, sizeof pw, "a smooth sampler/pdf mismatch of %.3g%% is caught in 95%% of runs; a pdf shape in "
+                         "cos theta_i, %s (%ld samples per direction)", 100 * o->min_eps, pc, ns);
+            printf("%-5s %-50s %-9s %-15s %-9s %s\n", "POWER", o->c.name, mode, "chi2", "physics", pw);
+        }
         if (o->o.no_agreement[0])
             printf("%-5s %-50s %-9s %-15s %-9s physics only: materia cannot build it (%s)\n", "INFO", o->c.name, mode,
                    "agreement", "agreement", o->o.no_agreement);
     }
 }
 
-int cf_impl_main(int argc, char **argv)
+/* --impl-lib PATH: the plugin's table (and its handle in *dl), or NULL
+ * and msg. */
+static const mt_impl_plugin *load_plugin(const char *path, void **dl, char *msg, size_t n)
+{
+    union {
+        void *p;
+        mt_impl_entry_fn f;
+    } entry; /* dlsym's object pointer as a function pointer, as POSIX allows */
+    const mt_impl_plugin *p;
+    const char *e;
+    /* a bare name would be searched on the library path: a file is meant */
+    char file[4200];
+    snprintf(file, sizeof file, "%s%s", strchr(path, '/') ? "" : "./", path);
+    *dl = dlopen(file, RTLD_NOW | RTLD_LOCAL);
+    if (!*dl) {
+        e = dlerror();
+        snprintf(msg, n, "cannot load \"%s\": %s", path, e ? e : "dlopen failed");
+        return NULL;
+    }
+    entry.p = dlsym(*dl, MT_IMPL_ENTRY);
+    if (!entry.p) {
+        snprintf(msg, n, "\"%s\" exports no %s (include/materia/impl.h)", path, MT_IMPL_ENTRY);
+        return NULL;
+    }
+    if (!(p = entry.f())) snprintf(msg, n, "\"%s\": %s returned NULL", path, MT_IMPL_ENTRY);
+    return p;
+}
+
+static int impl_main(int argc, char **argv, const mt_impl_plugin *linked);
+
+int cf_impl_main(int argc, char **argv) { return impl_main(argc, argv, NULL); }
+
+int mt_impl_run_suite(const mt_impl_plugin *plugin, int argc, char **argv)
+{
+    if (!plugin) return 2;
+    return impl_main(argc, argv, plugin);
+}
+
+static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
 {
     cf_run run;
     opts op;
@@ -571,7 +697,11 @@ int cf_impl_main(int argc, char **argv)
     cf_conventions conv = cf_conventions_default();
     double eps = 0;
     totals tot;
-    if ((i = parse(argc, argv, &op))) return i == 1 ? 0 : 2;
+    const mt_impl_plugin *plugin = NULL;
+    void *dl = NULL, *pstate = NULL;
+    const char *what; /* the implementation, in the header and the report */
+    char whatbuf[4200], nsamp[80];
+    if ((i = parse(argc, argv, &op, linked))) return i == 1 ? 0 : 2;
     p.out = NULL;
     p.n = 0;
     memset(&run, 0, sizeof run);
@@ -686,7 +816,19 @@ int cf_impl_main(int argc, char **argv)
             if (cf_case_set_data(&p.out[i].c, absdata)) goto done;
     }
     /* the implementation's conventions: its answer, or the options' */
-    if (!op.inprocess) {
+    if (op.lib || op.linked) {
+        plugin = op.linked ? op.linked : load_plugin(op.lib, &dl, msg, sizeof msg);
+        if (!plugin || cf_impl_lib_probe(plugin, &conv, &declared, &eps, impl_name, sizeof impl_name, msg, sizeof msg)) {
+            fprintf(stderr, "%s: --impl-lib: %s\n", argv[0], msg);
+            goto done;
+        }
+        msg[0] = 0;
+        if (plugin->create && !(pstate = plugin->create(op.lib_arg, msg, sizeof msg))) {
+            fprintf(stderr, "%s: --impl-lib: the plugin's create(%s%s%s) failed: %s\n", argv[0], op.lib_arg ? "\"" : "",
+                    op.lib_arg ? op.lib_arg : "NULL", op.lib_arg ? "\"" : "", msg[0] ? msg : "(no message)");
+            goto done;
+        }
+    } else if (!op.inprocess) {
         if (cf_impl_probe(op.command, op.timeout, &conv, &declared, &eps, impl_name, sizeof impl_name, msg, sizeof msg)) {
             printf("FAIL  %-50s %-9s %-15s %-9s %s\n", "(the implementation)", op.mode, "protocol", "physics", msg);
             printf("0 passed, 1 failed\n");
@@ -713,12 +855,27 @@ int cf_impl_main(int argc, char **argv)
         free(sel);
     }
     run.cfg.alpha_test = op.significance > 0 ? op.significance : cf_sidak(run.cfg.alpha, run.cfg.tests);
+    cf_set_run_seed((uint64_t)op.seed);
+    /* --power: each configuration's samples from its directions and cells */
+    if (op.power > 0)
+        for (i = 0; i < nsel; ++i) {
+            cf_v3 wo[CF_MAX_WO];
+            int nwo = cf_case_wo(&p.out[i].c, op.quick, wo);
+            p.out[i].samples = cf_power_samples(op.power, nwo, run.cfg.nphi * run.cfg.nz, run.cfg.nz, run.cfg.alpha_test,
+                                                0.95, POWER_MAX_SAMPLES);
+            if (p.out[i].samples < 100) p.out[i].samples = 100;
+        }
     /* the command line a reproducer re-runs with */
     {
         size_t at = 0;
         at += (size_t)snprintf(rerun + at, sizeof rerun - at, "materia-conformance");
         if (op.inprocess)
             at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --impl-inprocess");
+        else if (op.lib)
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --impl-lib '%s'%s%s%s", op.lib,
+                                   op.lib_arg ? " --impl-arg '" : "", op.lib_arg ? op.lib_arg : "", op.lib_arg ? "'" : "");
+        else if (op.linked)
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " (the linked plugin)");
         else {
             const char *s;
             at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --impl '");
@@ -732,17 +889,30 @@ int cf_impl_main(int argc, char **argv)
         if (op.quick) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --quick");
         if (op.transport) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --transport %s", op.transport);
         if (op.snum) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --sample-numbers %s", op.snum);
-        snprintf(rerun + at, sizeof rerun - at, " --samples %ld --cells %d --significance %.6g --timeout %g",
-                 run.cfg.samples, run.cfg.nphi, run.cfg.alpha_test, op.timeout);
+        if (op.power > 0)
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --power %g", op.power);
+        else
+            at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --samples %ld", run.cfg.samples);
+        if (op.seed) at += (size_t)snprintf(rerun + at, sizeof rerun - at, " --seed %ld", op.seed);
+        snprintf(rerun + at, sizeof rerun - at, " --cells %d --significance %.6g --timeout %g", run.cfg.nphi,
+                 run.cfg.alpha_test, op.timeout);
     }
     repro.dir = op.repro;
     repro.rerun = rerun;
     cf_conventions_format(&conv, cv, sizeof cv);
-    printf("materia-conformance --impl %s%s%s (materia %s build, mode %s, compare %s): %d configurations, %ld samples "
-           "per direction,\n%d x %d cells at most, %ld statistical tests, each at %.3g (Sidak: %.2g for the whole run)%s, "
+    if (op.inprocess)
+        what = "in this process";
+    else if (plugin)
+        snprintf(whatbuf, sizeof whatbuf, "plugin %.4000s", op.lib ? op.lib : "(linked)"), what = whatbuf;
+    else
+        snprintf(whatbuf, sizeof whatbuf, "'%.4000s'", op.command), what = whatbuf;
+    if (op.power > 0)
+        snprintf(nsamp, sizeof nsamp, "samples per direction set by --power %g", op.power);
+    else
+        snprintf(nsamp, sizeof nsamp, "%ld samples per direction", run.cfg.samples);
+    printf("materia-conformance --impl %s (materia %s build, mode %s, compare %s): %d configurations, %s%s,\n%d x %d cells at most, %ld statistical tests, each at %.3g (Sidak: %.2g for the whole run)%s, "
            "%g s per answer\nimplementation: %s; conventions: %s (%s)\n",
-           op.inprocess ? "in this process" : "'", op.inprocess ? "" : op.command, op.inprocess ? "" : "'",
-           mt_precision(), op.mode, op.compare, nsel, run.cfg.samples, run.cfg.nphi, run.cfg.nz, run.cfg.tests,
+           what, mt_precision(), op.mode, op.compare, nsel, nsamp, op.seed ? ", seeded" : "", run.cfg.nphi, run.cfg.nz, run.cfg.tests,
            run.cfg.alpha_test, run.cfg.alpha, op.significance > 0 ? " [--significance]" : "", op.timeout, impl_name, cv,
            op.transport || op.snum ? "set on the command line" : declared ? "its answer" : "pbrt-v2's: it answers no conventions");
     fflush(stdout);
@@ -750,7 +920,9 @@ int cf_impl_main(int argc, char **argv)
     p.next = 0;
     p.hangs = 0;
     p.run = &run;
-    p.command = op.inprocess ? NULL : op.command;
+    p.command = op.inprocess || plugin ? NULL : op.command;
+    p.plugin = plugin;
+    p.plugin_state = pstate;
     p.timeout = op.timeout;
     p.conv = conv;
     p.eps = eps;
@@ -762,7 +934,7 @@ int cf_impl_main(int argc, char **argv)
     pthread_mutex_destroy(&p.lock);
     print_rows(p.out, nsel, op.mode, &tot);
     fails = tot.failed[0] + tot.failed[1];
-    if (op.report && write_report(op.report, &run, op.inprocess ? "(in this process)" : op.command, impl_name, &conv,
+    if (op.report && write_report(op.report, &run, op.inprocess ? "(in this process)" : plugin ? what : op.command, impl_name, &conv,
                                   declared, p.out, nsel, &tot)) {
         fprintf(stderr, "%s: --report: cannot write \"%s\": %s\n", argv[0], op.report, strerror(errno));
         fails++;
@@ -784,5 +956,7 @@ done:
     if (have_re) regfree(&re);
     if (have_skip) regfree(&skip_re);
     if (tmpdir[0]) rm_data(tmpdir);
+    if (plugin && plugin->destroy && pstate) plugin->destroy(pstate);
+    if (dl) dlclose(dl);
     return status;
 }

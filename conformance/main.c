@@ -308,7 +308,8 @@ int main(int argc, char **argv)
     const char *ulps_other = NULL;
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
     for (i = 1; i < argc; ++i)
-        if (!strcmp(argv[i], "--impl") || !strcmp(argv[i], "--impl-inprocess")) return cf_impl_main(argc, argv);
+        if (!strcmp(argv[i], "--impl") || !strcmp(argv[i], "--impl-inprocess") || !strcmp(argv[i], "--impl-lib"))
+            return cf_impl_main(argc, argv);
     if (argc == 3 && !strcmp(argv[1], "--write-data")) {
         char msg[512];
         if (mkdir(argv[2], 0777) && errno != EEXIST) {

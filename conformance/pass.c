@@ -36,6 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "pass.h"
+#include "power.h"
 
 #define TWO_PI 6.283185307179586476925
 #define DEG (180 / 3.14159265358979323846)
@@ -431,6 +432,12 @@ static void chi2_of(cf_ctx *x, acc *a, int which, cf_wo_data *d, const cf_layout
     cf_chi2 c2;
     cf_chi2_counts(l->ncell, counts, pdfc, d->n, d->ndirs, integral, &c2);
     plot(x, which, d, l, counts, pdfc, &c2);
+    if (which == 0 && d->index < CF_MAX_WO) { /* its power (power.c) */
+        x->out->pw_n[d->index] = d->n;
+        x->out->pw_dof[d->index] = c2.dof;
+        x->out->pw_v[d->index] = cf_power_shape(l, pdfc);
+        x->out->pw_vcos[d->index] = cf_power_shape_cos(l, pdfc);
+    }
     if (c2.hard) a->chi[which].hard = 1;
     if (c2.p < a->chi[which].min_p) {
         char wod[200], cells[420];

@@ -1,0 +1,174 @@
+/*
+ * The in-process implementation interface (include/materia/impl.h), proven:
+ *
+ *  - materia's own BSDFs as a plugin (--impl-lib), through the plugin host
+ *    as a protocol speaker (--impl 'materia-plugin-host PLUGIN'), linked
+ *    into a program that calls mt_impl_run_suite, and materia in this
+ *    process: the same rows, value for value, every one passed;
+ *  - the C example (examples/plugin/lambert_plugin.c) passes physics, its
+ *    unsupported materials skipped, by both paths;
+ *  - a plugin with a smooth 1% sampler warp planted (tests/plugin_planted.c)
+ *    is failed by the chi-square at --power 0.01, physics alone, in each of
+ *    a few seeded runs of one configuration, and the honest plugin passes
+ *    the same runs; the POWER row shows the mismatch it could catch;
+ *  - bad plugins and bad options: exit 2 with a message naming them.
+ *
+ * Cost: about 20 s of one core (the --power runs dominate).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "support/toutput.h"
+
+static char bin[1100], tests_dir[1024], plugins[1100];
+static int failures;
+
+static void verdict(int ok, const char *name, const char *cmd, const char *out)
+{
+    printf("%s plugin: %s\n", ok ? "PASS" : "FAIL", name);
+    if (!ok) {
+        failures++;
+        printf("    command: %s\n", cmd);
+        t_show_unpassed(out, 12);
+    }
+}
+
+/* Runs cmd (stderr joined): its status must be want and each row present;
+ * the output in *keep when keep is not NULL. */
+static void expect(const char *name, const char *cmd, int want, const char *const *rows, char **keep)
+{
+    char *out = NULL;
+    int st = t_run_output(cmd, &out), ok = st == want && t_has_rows(out, rows);
+    if (ok && want == 0 && !strstr(out, " passed, 0 failed")) ok = 0;
+    if (!ok) printf("    exit %d, want %d\n", st, want);
+    verdict(ok, name, cmd, out);
+    if (keep)
+        *keep = out;
+    else
+        free(out);
+}
+
+/* The rows of a run: its output after the three lines of its header. */
+static const char *rows_of(const char *out)
+{
+    int k;
+    for (k = 0; out && k < 3 && (out = strchr(out, '\n')); ++k) out++;
+    return out ? out : "";
+}
+
+int main(int argc, char **argv)
+{
+    static const char *const only = "--only '^(matte Kd=1|plastic default|glass default|mix matte/plastic amount=0.3)$'";
+    char cmd[8192];
+    char *self = NULL, *lib = NULL, *host = NULL, *linked = NULL;
+    char *slash;
+    int seed;
+    (void)argc;
+    snprintf(tests_dir, sizeof tests_dir, "%.1000s", argv[0]);
+    slash = strrchr(tests_dir, '/');
+    if (slash)
+        *slash = 0;
+    else
+        snprintf(tests_dir, sizeof tests_dir, ".");
+    snprintf(bin, sizeof bin, "%.1000s/../bin", tests_dir);
+    snprintf(plugins, sizeof plugins, "%.1000s/../plugins", tests_dir);
+
+    /* one implementation, four paths, the same rows */
+    snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-inprocess --quick --threads 2 %s 2>&1", bin, only);
+    expect("materia in this process passes", cmd, 0, NULL, &self);
+    snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-lib %s/materia_plugin.so --quick --threads 2 %s 2>&1", bin,
+             plugins, only);
+    expect("materia's plugin passes (--impl-lib)", cmd, 0, NULL, &lib);
+    snprintf(cmd, sizeof cmd,
+             "%s/materia-conformance --impl '%s/materia-plugin-host %s/materia_plugin.so' --quick --threads 2 %s 2>&1", bin,
+             bin, plugins, only);
+    expect("materia's plugin passes through the plugin host (--impl)", cmd, 0, NULL, &host);
+    snprintf(cmd, sizeof cmd, "%s/plugin-linked --quick --threads 2 %s 2>&1", tests_dir, only);
+    expect("materia's plugin passes linked into a program (mt_impl_run_suite)", cmd, 0, NULL, &linked);
+    verdict(self && lib && host && linked && !strcmp(rows_of(self), rows_of(lib)) && !strcmp(rows_of(self), rows_of(host)) &&
+                !strcmp(rows_of(self), rows_of(linked)) && strstr(rows_of(self), "PASS  glass default"),
+            "in this process, as a plugin, through the host and linked: the same rows", "(the four above)", "");
+    free(self);
+    free(lib);
+    free(host);
+    free(linked);
+
+    /* the C example, both ways: physics passed, the rest skipped */
+    {
+        static const char *const rows[] = {"PASS|matte Kd=1|chi2|physics", "PASS|matte Kd=1|furnace MC=quad",
+                                           "PASS|matte Kd=1|reciprocity", "SKIP|plastic default|unsupported|material",
+                                           "POWER|matte Kd=1|a smooth sampler/pdf mismatch of", NULL};
+        snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-lib %s/lambert_plugin.so --compare none --quick --threads 2 2>&1",
+                 bin, plugins);
+        expect("the C example plugin passes physics, the materials it lacks skipped", cmd, 0, rows, NULL);
+        snprintf(cmd, sizeof cmd,
+                 "%s/materia-conformance --impl '%s/materia-plugin-host %s/lambert_plugin.so' --compare none --quick "
+                 "--threads 2 2>&1",
+                 bin, bin, plugins);
+        expect("the C example through the plugin host: the same", cmd, 0, rows, NULL);
+    }
+
+    /* a 1% sampler warp, physics alone, at --power 0.01; the honest one
+     * passes the same seeded runs */
+    for (seed = 1; seed <= 3; ++seed) {
+        static const char *const caught[] = {"FAIL|matte Kd=1|chi2|physics", NULL};
+        static const char *const honest[] = {"PASS|matte Kd=1|chi2|physics", "POWER|matte Kd=1", NULL};
+        int k;
+        for (k = 0; k < 2; ++k) {
+            char name[160];
+            snprintf(cmd, sizeof cmd,
+                     "%s/materia-conformance --impl-lib %s/plugin_planted.so --impl-arg '%s' --power 0.01 --quick "
+                     "--compare none --only '^matte Kd=1$' --check chi2 --seed %d --threads 1 2>&1",
+                     bin, tests_dir, k ? "none 0" : "warp 0.01", seed);
+            snprintf(name, sizeof name, "%s (seed %d)",
+                     k ? "the honest plugin passes the same run" : "a 1% sampler warp is caught by chi2 at --power 0.01", seed);
+            expect(name, cmd, k ? 0 : 1, k ? honest : caught, NULL);
+        }
+    }
+
+    /* bad plugins, bad options */
+    snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-lib %s/no-such-plugin.so --quick 2>&1", bin, tests_dir);
+    {
+        static const char *const rows[] = {NULL};
+        char *out = NULL;
+        int st = t_run_output(cmd, &out);
+        verdict(st == 2 && out && strstr(out, "--impl-lib: cannot load") && strstr(out, "no-such-plugin.so"),
+                "a plugin that cannot be loaded: exit 2, named", cmd, out);
+        free(out);
+        snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-lib %s/../bin/materia-query --quick 2>&1", bin, tests_dir);
+        st = t_run_output(cmd, &out);
+        verdict(st == 2 && out && strstr(out, "--impl-lib:"), "a file that is no plugin: exit 2", cmd, out);
+        free(out);
+        snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-lib %s/plugin_planted.so --impl-arg 'bent 0.01' --quick 2>&1",
+                 bin, tests_dir);
+        st = t_run_output(cmd, &out);
+        verdict(st == 2 && out && strstr(out, "create(\"bent 0.01\") failed"), "a plugin whose create fails: exit 2, its message",
+                cmd, out);
+        free(out);
+        snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-inprocess --impl-arg x --quick 2>&1", bin);
+        st = t_run_output(cmd, &out);
+        verdict(st == 2 && out && strstr(out, "--impl-arg needs --impl-lib"), "--impl-arg without --impl-lib: exit 2", cmd, out);
+        free(out);
+        snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl-inprocess --power 0.0001 --quick 2>&1", bin);
+        st = t_run_output(cmd, &out);
+        verdict(st == 2 && out && strstr(out, "--power: \"0.0001\""), "--power out of range: exit 2", cmd, out);
+        free(out);
+        (void)rows;
+    }
+    /* the host answers the protocol's version and conventions, and an
+     * unsupported material as the protocol says */
+    {
+        char *out = NULL;
+        snprintf(cmd, sizeof cmd,
+                 "printf 'version\\nconventions\\nMaterial \"plastic\"\\neval 0 0 1 0 0 1\\nMaterial \"matte\" \"rgb Kd\" "
+                 "[1 1 1]\\neval 0 0 1 0 0 1\\n' | %s/materia-plugin-host %s/lambert_plugin.so 2>&1",
+                 bin, plugins);
+        t_run_output(cmd, &out);
+        verdict(out && !strcmp(out, "protocol 2 lambert_plugin 1.0 precision double\ntransport importance sample-numbers 3\n"
+                                   "ok\nerror unsupported: material \"plastic\": only matte\nok\n"
+                                   "0.31830988618379069 0.31830988618379069 0.31830988618379069 0.31830988618379069\n"),
+                "the plugin host speaks the protocol", cmd, out);
+        free(out);
+    }
+    return failures != 0;
+}
