@@ -13,6 +13,7 @@
 #include <string.h>
 #include "materia.h"
 #include "materia/impl.h"
+#include "materia/tools/query.h"
 #include "materia_plugin.h"
 
 typedef struct mp_config {

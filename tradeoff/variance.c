@@ -152,7 +152,7 @@ int main(int argc, char **argv)
             o.seed = seeds[r];
             if (mt_scene_render(s, &o, &img[r], NULL, &st[r], &err) != MT_OK) {
                 fprintf(stderr, "variance: %s\n", mt_error_format(&err, buf, sizeof buf));
-                if (r) mt_image_free(&img[0]);
+                if (r) mt_image_destroy(&img[0]);
                 status = 1;
                 break;
             }
@@ -167,8 +167,8 @@ int main(int argc, char **argv)
         printf("%.*s %.6g %.6g %.2f\n", (int)(eq - argv[i]), argv[i], sqrt(sq / (double)n / 2),
                sum / (double)n / 2, st[0].seconds + st[1].seconds);
         fflush(stdout);
-        mt_image_free(&img[0]);
-        mt_image_free(&img[1]);
+        mt_image_destroy(&img[0]);
+        mt_image_destroy(&img[1]);
     }
     mt_scene_destroy(s);
     return status;
