@@ -289,6 +289,8 @@ static const char usage_text[] =
     "                  suite's own run (--impl --help)\n"
     "  --impl-inprocess  materia itself in this process, as --impl runs it, instead of the\n"
     "                  suite's own run (--impl --help)\n"
+    "  --impl-lib PLUGIN.so  a plugin (include/materia/impl.h) loaded into this process, instead\n"
+    "                  of the suite's own run (--impl --help, docs/PLUGIN.md)\n"
     "  --help, -h      this help\n"
     "  --version       materia's version and precision\n"
     "Exit status: 0 all passed, 1 a check failed, 2 wrong command line.\n";
