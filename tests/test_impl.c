@@ -61,36 +61,6 @@ static void expect(const char *name, const char *args, int want, const char *con
     expect_out(name, args, want, rows, NULL, NULL);
 }
 
-/* The rows of a run: its output after the three lines of its header. */
-static const char *rows_of(const char *out)
-{
-    int k;
-    for (k = 0; out && k < 3 && (out = strchr(out, '\n')); ++k) out++;
-    return out ? out : "";
-}
-
-/* The rows' verdicts: each row up to its kind (physics, agreement), the
- * summary lines whole, the lines under a row left out (malloc'd). */
-static char *verdicts_of(const char *rows)
-{
-    char *v = malloc(strlen(rows) + 1), *at = v;
-    while (v && *rows) {
-        const char *e = strchr(rows, '\n'), *k;
-        size_t len = e ? (size_t)(e - rows) : strlen(rows);
-        if (*rows != ' ') {
-            k = strstr(rows, " physics ");
-            if (!k || k > rows + len) k = strstr(rows, " agreement ");
-            if (k && k < rows + len) len = (size_t)(strchr(k + 1, ' ') - rows);
-            memcpy(at, rows, len);
-            at += len;
-            *at++ = '\n';
-        }
-        rows += e ? (size_t)(e - rows) + 1 : len;
-    }
-    if (v) *at = 0;
-    return v;
-}
-
 /* The command the reproducer at the start of `line` ("      repro: FILE;
  * alone: COMMAND") gives, run from bin: its exit status, its output. */
 static int rerun(const char *out, const char *marker, char **rout)
@@ -156,14 +126,14 @@ int main(int argc, char **argv)
          * against 0.01081623137...), so its statistics differ in the last
          * digits */
         if (child && self && strstr(child, "(materia float build")) {
-            if (!strcmp(rows_of(child), rows_of(self)))
+            if (!strcmp(t_rows_of(child), t_rows_of(self)))
                 printf("PASS impl: in this process and through materia-query, the same rows\n");
             else {
                 failures++;
                 printf("FAIL impl: in this process and through materia-query, the same rows (they differ)\n");
             }
         } else {
-            char *a = child ? verdicts_of(rows_of(child)) : NULL, *b = self ? verdicts_of(rows_of(self)) : NULL;
+            char *a = child ? t_verdicts_of(t_rows_of(child)) : NULL, *b = self ? t_verdicts_of(t_rows_of(self)) : NULL;
             if (a && b && !strcmp(a, b))
                 printf("PASS impl: in this process and through materia-query, the same verdicts (double)\n");
             else {

@@ -48,14 +48,6 @@ static void expect(const char *name, const char *cmd, int want, const char *cons
         free(out);
 }
 
-/* The rows of a run: its output after the three lines of its header. */
-static const char *rows_of(const char *out)
-{
-    int k;
-    for (k = 0; out && k < 3 && (out = strchr(out, '\n')); ++k) out++;
-    return out ? out : "";
-}
-
 int main(int argc, char **argv)
 {
     static const char *const only = "--only '^(matte Kd=1|plastic default|glass default|mix matte/plastic amount=0.3)$'";
@@ -85,9 +77,22 @@ int main(int argc, char **argv)
     expect("materia's plugin passes through the plugin host (--impl)", cmd, 0, NULL, &host);
     snprintf(cmd, sizeof cmd, "%s/plugin-linked --quick --threads 2 %s 2>&1", tests_dir, only);
     expect("materia's plugin passes linked into a program (mt_impl_run_suite)", cmd, 0, NULL, &linked);
-    verdict(self && lib && host && linked && !strcmp(rows_of(self), rows_of(lib)) && !strcmp(rows_of(self), rows_of(host)) &&
-                !strcmp(rows_of(self), rows_of(linked)) && strstr(rows_of(self), "PASS  glass default"),
-            "in this process, as a plugin, through the host and linked: the same rows", "(the four above)", "");
+    /* the host speaks the text protocol: in a double build it reads the
+     * suite's float inputs from their 9 digits (not their exact values), so
+     * its statistics differ in the last digits and only its verdicts must be
+     * the same (as test_impl's materia-query); the three in-process paths are
+     * the same value for value in both precisions */
+    {
+        char *vs = self ? t_verdicts_of(t_rows_of(self)) : NULL, *vh = host ? t_verdicts_of(t_rows_of(host)) : NULL;
+        int hostsame = self && host &&
+                       (strstr(self, "(materia float build") ? !strcmp(t_rows_of(self), t_rows_of(host))
+                                                              : vs && vh && !strcmp(vs, vh));
+        verdict(self && lib && linked && !strcmp(t_rows_of(self), t_rows_of(lib)) && hostsame &&
+                    !strcmp(t_rows_of(self), t_rows_of(linked)) && strstr(t_rows_of(self), "PASS  glass default"),
+                "in this process, as a plugin, through the host and linked: the same rows", "(the four above)", "");
+        free(vs);
+        free(vh);
+    }
     free(self);
     free(lib);
     free(host);

@@ -102,3 +102,30 @@ int t_check_run(const char *name, const char *cmd, int status, const char *const
         free(out);
     return ok;
 }
+
+const char *t_rows_of(const char *out)
+{
+    int k;
+    for (k = 0; out && k < 3 && (out = strchr(out, '\n')); ++k) out++;
+    return out ? out : "";
+}
+
+char *t_verdicts_of(const char *rows)
+{
+    char *v = malloc(strlen(rows) + 1), *at = v;
+    while (v && *rows) {
+        const char *e = strchr(rows, '\n'), *k;
+        size_t len = e ? (size_t)(e - rows) : strlen(rows);
+        if (*rows != ' ') {
+            k = strstr(rows, " physics ");
+            if (!k || k > rows + len) k = strstr(rows, " agreement ");
+            if (k && k < rows + len) len = (size_t)(strchr(k + 1, ' ') - rows);
+            memcpy(at, rows, len);
+            at += len;
+            *at++ = '\n';
+        }
+        rows += e ? (size_t)(e - rows) + 1 : len;
+    }
+    if (v) *at = 0;
+    return v;
+}

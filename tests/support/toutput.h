@@ -25,5 +25,13 @@ void t_show_unpassed(const char *out, int max);
  * rows that did not pass. Returns 1 when it did; *output, when output is not
  * NULL, keeps the output (malloc'd, or NULL) for further checks. */
 int t_check_run(const char *name, const char *cmd, int status, const char *const *rows, char **output);
+/* The rows of a conformance run: its output after the three lines of its
+ * header. */
+const char *t_rows_of(const char *out);
+/* The rows' verdicts: each row up to its kind (physics, agreement), the
+ * summary lines whole, the lines under a row left out (malloc'd). Two runs
+ * with the same verdicts whose statistics differ in the last digits (a
+ * double implementation reading the suite's 9-digit floats) compare equal. */
+char *t_verdicts_of(const char *rows);
 
 #endif
