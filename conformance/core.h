@@ -227,7 +227,7 @@ typedef struct cf_result {
     cf_worst worst[CF_WORST];
     cf_measure m;
     int wo;              /* the incoming direction a statistical failure is worst at, or -1 */
-    char where[600];     /* that direction (vector, theta, phi) and its worst cells */
+    char where[672];     /* that direction (vector, theta, phi) and its worst cells (pass.c: a direction, its count, its cells) */
 } cf_result;
 
 void cf_measure_add(cf_result *r, double s, double se, double sys, double at, const char *what);

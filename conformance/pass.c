@@ -347,7 +347,7 @@ typedef struct acc {
         double min_p;
         long dof;
         int hard, wo;
-        char where[600];
+        char where[672]; /* wod[200], cells[420] and the count (core.h cf_result.where the same) */
     } chi[2];
     double worst_int, worst_mc, worst_gap, worst_excess, rho_lo, rho_hi;
     int int_wo, mc_wo, rho_wo, gap_bad, other;
