@@ -390,7 +390,7 @@ static void integrand(void *ctx, double phi, double z, double *out)
     /* across the surface only: f(wo, d) |cos| and f(d, wo) |cos| */
     if ((d.x * g->ng.x + d.y * g->ng.y + d.z * g->ng.z) * (g->wo.x * g->ng.x + g->wo.y * g->ng.y + g->wo.z * g->ng.z) >= 0)
         return;
-    if (!value(g, d, 0, v) | !value(g, d, 1, w)) return;
+    if (!value(g, d, 0, v) || !value(g, d, 1, w)) return;
     for (k = 0; k < 3; ++k) {
         out[k] = v[k] * c;
         out[3 + k] = w[k] * c;
