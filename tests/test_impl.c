@@ -120,28 +120,13 @@ int main(int argc, char **argv)
         expect_out("materia-query passes, corrected mode", args, 0, NULL, NULL, &child);
         expect_out("materia in this process passes, corrected mode", "--impl-inprocess --quick --threads 2", 0, NULL, NULL,
                    &self);
-        /* float: the same rows, value for value. double: the same verdicts;
-         * a double materia-query reads the suite's float inputs from their
-         * 9 digits, which name the float but are not its value (0.0108162314
-         * against 0.01081623137...), so its statistics differ in the last
-         * digits */
-        if (child && self && strstr(child, "(materia float build")) {
-            if (!strcmp(t_rows_of(child), t_rows_of(self)))
-                printf("PASS impl: in this process and through materia-query, the same rows\n");
-            else {
-                failures++;
-                printf("FAIL impl: in this process and through materia-query, the same rows (they differ)\n");
-            }
-        } else {
-            char *a = child ? t_verdicts_of(t_rows_of(child)) : NULL, *b = self ? t_verdicts_of(t_rows_of(self)) : NULL;
-            if (a && b && !strcmp(a, b))
-                printf("PASS impl: in this process and through materia-query, the same verdicts (double)\n");
-            else {
-                failures++;
-                printf("FAIL impl: in this process and through materia-query, the same verdicts (double; they differ)\n");
-            }
-            free(a);
-            free(b);
+        /* float: the same rows, value for value; double: the same verdicts
+         * (t_same_runs says why) */
+        if (t_same_runs(self, child))
+            printf("PASS impl: in this process and through materia-query, the same rows (verdicts in double)\n");
+        else {
+            failures++;
+            printf("FAIL impl: in this process and through materia-query, the same rows (verdicts in double): they differ\n");
         }
         free(child);
         free(self);

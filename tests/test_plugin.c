@@ -77,22 +77,11 @@ int main(int argc, char **argv)
     expect("materia's plugin passes through the plugin host (--impl)", cmd, 0, NULL, &host);
     snprintf(cmd, sizeof cmd, "%s/plugin-linked --quick --threads 2 %s 2>&1", tests_dir, only);
     expect("materia's plugin passes linked into a program (mt_impl_run_suite)", cmd, 0, NULL, &linked);
-    /* the host speaks the text protocol: in a double build it reads the
-     * suite's float inputs from their 9 digits (not their exact values), so
-     * its statistics differ in the last digits and only its verdicts must be
-     * the same (as test_impl's materia-query); the three in-process paths are
-     * the same value for value in both precisions */
-    {
-        char *vs = self ? t_verdicts_of(t_rows_of(self)) : NULL, *vh = host ? t_verdicts_of(t_rows_of(host)) : NULL;
-        int hostsame = self && host &&
-                       (strstr(self, "(materia float build") ? !strcmp(t_rows_of(self), t_rows_of(host))
-                                                              : vs && vh && !strcmp(vs, vh));
-        verdict(self && lib && linked && !strcmp(t_rows_of(self), t_rows_of(lib)) && hostsame &&
-                    !strcmp(t_rows_of(self), t_rows_of(linked)) && strstr(t_rows_of(self), "PASS  glass default"),
-                "in this process, as a plugin, through the host and linked: the same rows", "(the four above)", "");
-        free(vs);
-        free(vh);
-    }
+    /* the host speaks the text protocol (t_same_runs: verdicts in double);
+     * the three in-process paths are the same value for value */
+    verdict(self && lib && linked && !strcmp(t_rows_of(self), t_rows_of(lib)) && t_same_runs(self, host) &&
+                !strcmp(t_rows_of(self), t_rows_of(linked)) && strstr(t_rows_of(self), "PASS  glass default"),
+            "in this process, as a plugin, through the host and linked: the same rows", "(the four above)", "");
     free(self);
     free(lib);
     free(host);

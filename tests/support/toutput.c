@@ -129,3 +129,17 @@ char *t_verdicts_of(const char *rows)
     if (v) *at = 0;
     return v;
 }
+
+int t_same_runs(const char *self, const char *other)
+{
+    char *a, *b;
+    int same;
+    if (!self || !other) return 0;
+    if (strstr(self, "(materia float build")) return !strcmp(t_rows_of(self), t_rows_of(other));
+    a = t_verdicts_of(t_rows_of(self));
+    b = t_verdicts_of(t_rows_of(other));
+    same = a && b && !strcmp(a, b);
+    free(a);
+    free(b);
+    return same;
+}

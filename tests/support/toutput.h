@@ -33,5 +33,11 @@ const char *t_rows_of(const char *out);
  * with the same verdicts whose statistics differ in the last digits (a
  * double implementation reading the suite's 9-digit floats) compare equal. */
 char *t_verdicts_of(const char *rows);
+/* Whether two conformance runs (whole outputs, a run in this process first)
+ * agree: in a float build their rows value for value; in a double build
+ * their verdicts, since a double implementation behind the text protocol
+ * reads the suite's float inputs from their 9 digits, which name the float
+ * but are not its value, so its statistics differ in the last digits. */
+int t_same_runs(const char *self, const char *other);
 
 #endif
