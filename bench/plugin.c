@@ -12,6 +12,7 @@
 #include <string.h>
 #include "materia.h"
 #include "materia/impl.h"
+#include "materia/tools/query.h"
 #include "support/timing.h"
 
 #define N 4096

@@ -104,7 +104,7 @@ static int answers(const char *dir, int nq)
         int nl = config_lines(&cs[ci], dir, buf, lines);
         cf_impl im;
         cf_query *q = NULL;
-        if (nl < 0 || cf_impl_open(&im, NULL, 0, MT_MODE_PBRT_V2, lines, nl)) {
+        if (nl < 0 || cf_materia_open(&im, MT_MODE_PBRT_V2, lines, nl)) {
             fprintf(stderr, "precision: %s: %s\n", cs[ci].name, nl < 0 ? "line too long" : im.msg);
             return 1;
         }
