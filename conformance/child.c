@@ -291,9 +291,12 @@ int cf_child_batch(cf_child *c, const char *text, size_t len, int n, const char 
                 return stop_with(c, text, len, got, "out of memory reading the answer to");
             }
             c->in_len += (size_t)rd;
-            /* complete lines become answers; the rest waits for more */
+            /* complete lines become answers; the rest waits for more
+             * (memchr: a batched answer is thousands of bytes) */
             for (k = 0; k < c->in_len; ++k) {
-                if (c->in[k] != '\n') continue;
+                const char *nl = memchr(c->in + k, '\n', c->in_len - k);
+                if (!nl) break;
+                k = (size_t)(nl - c->in);
                 if (got < n) {
                     size_t l = k - start;
                     if (l && c->in[start + l - 1] == '\r') l--;

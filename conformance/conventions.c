@@ -11,6 +11,9 @@
  *       3: pbrt-v2's, uc chooses the component, u1 and u2 its direction;
  *       2: uc chooses and is rescaled to drive the component (pbrt-v3's
  *       Sample_f(wo, &wi, u)), u1 the second number, u2 unused.
+ *   batch N
+ *       protocol 3: it answers "evals" and "samples" lines of up to N
+ *       triples (N >= 1; not a convention of its values: formatted apart).
  *
  * And "unsupported": an error answer whose message (after any
  * "FILE:LINE:COL:" position) starts with the word unsupported.
@@ -25,6 +28,7 @@ cf_conventions cf_conventions_default(void)
     cf_conventions c;
     c.transport = CF_IMPORTANCE;
     c.sample_numbers = 3;
+    c.batch = 1;
     return c;
 }
 
@@ -63,6 +67,15 @@ int cf_conventions_parse(const char *answer, cf_conventions *c, char *why, size_
                 snprintf(why, n, "transport \"%.*s\" is neither importance nor radiance", (int)vl, v);
                 return -1;
             }
+        } else if (kl == 5 && !strncmp(s, "batch", 5)) {
+            long b = 0;
+            size_t i;
+            for (i = 0; i < vl && isdigit((unsigned char)v[i]) && b <= 100000000; ++i) b = 10 * b + (v[i] - '0');
+            if (i < vl || b < 1 || b > 100000000) {
+                snprintf(why, n, "batch \"%.*s\" is not a whole number from 1 to 100000000", (int)(vl > 20 ? 20 : vl), v);
+                return -1;
+            }
+            out.batch = (int)b;
         } else if (kl == 14 && !strncmp(s, "sample-numbers", 14)) {
             if (vl == 1 && (*v == '3' || *v == '2'))
                 out.sample_numbers = *v - '0';

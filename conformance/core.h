@@ -29,6 +29,7 @@ enum { CF_IMPORTANCE = 0, CF_RADIANCE = 1 };
 typedef struct cf_conventions {
     int transport;      /* CF_IMPORTANCE (pbrt-v2's BTDF values) or CF_RADIANCE */
     int sample_numbers; /* 3: uc chooses, u1 u2 direct; 2: uc chooses and is rescaled, u1 second */
+    int batch;          /* the most triples of an evals/samples line (protocol 3); 1: none */
 } cf_conventions;
 
 /* pbrt-v2's: importance, 3. */

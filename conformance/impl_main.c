@@ -166,7 +166,7 @@ static void usage(FILE *f, const char *argv0)
     fprintf(f,
             "usage: %s --impl 'COMMAND' [--mode pbrt-v2|corrected] [--compare materia|none] [--catalog FILE]...\n"
             "       [--only REGEX] [--skip REGEX] [--check NAME] [--wo K] [--quick] [--samples N] [--cells N] [--significance P]\n"
-            "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS]\n"
+            "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS] [--no-batch]\n"
             "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR] [--power EPS] [--seed S]\n"
             "       %s --impl-inprocess ...   materia itself, in this process, in place of COMMAND\n"
             "       %s --impl-lib PLUGIN.so [--impl-arg STRING] ...   a plugin (include/materia/impl.h)\n"
@@ -197,6 +197,8 @@ static void usage(FILE *f, const char *argv0)
             "  --data DIR     where the suite writes the files configurations name (default: a\n"
             "                 temporary directory); they reach COMMAND as absolute paths\n"
             "  --timeout S    seconds allowed for each answer, > 0 and at most 1e6 (default 10)\n"
+            "  --no-batch     one query a line, even to an implementation whose conventions announce\n"
+            "                 batched lines (default: batched lines when it does; docs/PROTOCOL.md)\n"
             "  --samples N    samples per incoming direction, 100 to 1e8 (default 40000; --quick 8000)\n"
             "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n",
             argv0, argv0, argv0);
@@ -229,7 +231,7 @@ typedef struct opts {
     long seed;
     const mt_impl_plugin *linked; /* mt_impl_run_suite's plugin */
     const char *catalogs[MAX_CATALOGS];
-    int ncatalogs, quick, plots_all, cells, threads, inprocess, wo;
+    int ncatalogs, quick, plots_all, cells, threads, inprocess, wo, no_batch;
     long samples;
     double timeout, significance;
 } opts;
@@ -277,8 +279,9 @@ static int parse(int argc, char **argv, opts *o, const mt_impl_plugin *linked)
         }
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
-        if (!strcmp(a, "--quick") || !strcmp(a, "--plots-all") || !strcmp(a, "--impl-inprocess")) {
-            int *flag = a[2] == 'q' ? &o->quick : a[2] == 'p' ? &o->plots_all : &o->inprocess;
+        if (!strcmp(a, "--quick") || !strcmp(a, "--plots-all") || !strcmp(a, "--impl-inprocess") ||
+            !strcmp(a, "--no-batch")) {
+            int *flag = a[2] == 'q' ? &o->quick : a[2] == 'p' ? &o->plots_all : a[2] == 'n' ? &o->no_batch : &o->inprocess;
             if (*flag) {
                 fprintf(stderr, "%s: %s is given twice\n", argv[0], a);
                 return 2;
@@ -841,6 +844,7 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
     }
     if (op.transport) conv.transport = !strcmp(op.transport, "radiance") ? CF_RADIANCE : CF_IMPORTANCE;
     if (op.snum) conv.sample_numbers = op.snum[0] - '0';
+    if (op.no_batch) conv.batch = 1;
     run.sample_numbers = conv.sample_numbers;
     run.cfg.samples = op.samples ? op.samples : op.quick ? 8000 : 40000;
     run.cfg.nphi = op.cells ? op.cells : op.quick ? 12 : 20;

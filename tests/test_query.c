@@ -17,7 +17,7 @@ static void run(const char *script, char *got, size_t size)
 {
     mt_error err;
     mt_query *q = mt_query_create(NULL, &err);
-    char line[1024], out[4096];
+    char line[16384], out[4096];
     const char *s = script;
     size_t used = 0;
     got[0] = 0;
@@ -72,7 +72,7 @@ static void test_version(void)
              MT_USE_DOUBLE ? "double" : "float");
     expect("query: version answers protocol, materia version and precision", "version", want);
     expect("query: version takes no arguments", "version 2", "error version: takes no arguments");
-    t_check(MT_QUERY_PROTOCOL_VERSION == 2, "query: protocol version 2 (docs/PROTOCOL.md)", "header says %d",
+    t_check(MT_QUERY_PROTOCOL_VERSION == 3, "query: protocol version 3 (docs/PROTOCOL.md)", "header says %d",
             MT_QUERY_PROTOCOL_VERSION);
 }
 
@@ -87,7 +87,7 @@ static void test_conventions(void)
     double ta, tb;
     const char *glass = "Material \"glass\"\nsample 0 0.6 0.8 0.9 0.5 0.5";
     expect("query: conventions of materia: importance, three numbers", "conventions",
-           "transport importance sample-numbers 3");
+           "transport importance sample-numbers 3 batch 256");
     expect("query: conventions takes no arguments", "conventions 1", "error conventions: takes no arguments");
     run(glass, a, sizeof a);
     mt_error_clear(&err);
@@ -103,7 +103,8 @@ static void test_conventions(void)
             if (mt_query_line(q, lines[i], out, sizeof out)) at += (size_t)snprintf(b + at, sizeof b - at, "%s\n", out);
     }
     mt_query_destroy(q);
-    t_check(!strncmp(b, "transport radiance sample-numbers 3\n", 36), "query: the radiance option answers transport radiance",
+    t_check(!strncmp(b, "transport radiance sample-numbers 3 batch 256\n", 46),
+            "query: the radiance option answers transport radiance",
             "answered %s", b);
     /* the sampled transmission's f (4th value) in both */
     ta = tb = 0;
@@ -194,7 +195,7 @@ static void test_numbers(void)
     mt_bsdf_sample s;
     mt_rgb f;
     mt_real pdf;
-    char script[512], got[1024], *p, *end;
+    char script[512], got[8192], *p, *end;
     double v[12];
     int i, n = 0, same = 1;
     /* plastic as pbrt-v2 builds it with a black Kd: no Lambertian (commit
@@ -233,6 +234,60 @@ static void test_numbers(void)
     mt_arena_destroy(a);
 }
 
+/* evals and samples (protocol 3): one line answers what the plain queries
+ * of its triples answer, in order, with the same text; a bad line is one
+ * error naming what is wrong, and the session goes on. */
+static void test_batched(void)
+{
+    char plain[8192], batched[8192];
+    static const char *const mats[] = {"Material \"plastic\" \"float roughness\" [0.05]",
+                                       "Material \"glass\"", "Material \"matte\" \"float sigma\" [20]"};
+    char big[12000];
+    size_t at;
+    int m, i;
+    for (m = 0; m < 3; ++m) {
+        char sp[2048], sb[2048];
+        snprintf(sp, sizeof sp,
+                 "%s\neval 0 0.6 0.8 0 -0.6 0.8\neval 0 0.6 0.8 0.1 0.2 0.974679434\neval 0 0.6 0.8 0 0 -1\n"
+                 "sample 0 0.6 0.8 0.1 0.2 0.3\nsample 0 0.6 0.8 0.9 0.7 0.5\nsample 0 0.6 0.8 0.5 0.999 0",
+                 mats[m]);
+        snprintf(sb, sizeof sb,
+                 "%s\nevals 0 0.6 0.8 0 -0.6 0.8 0.1 0.2 0.974679434 0 0 -1\n"
+                 "samples 0 0.6 0.8 0.1 0.2 0.3 0.9 0.7 0.5 0.5 0.999 0",
+                 mats[m]);
+        run(sp, plain, sizeof plain);
+        run(sb, batched, sizeof batched);
+        /* the plain answers joined by spaces, two lines: evals' and samples' */
+        for (i = 0, at = 0; plain[at]; ++at)
+            if (plain[at] == '\n' && ++i != 1 && i != 4) plain[at] = ' ';
+        t_check(!strcmp(plain, batched), "query: evals and samples answer the plain queries' text, in order",
+                "%s\nplain:\n%s\nbatched:\n%s", mats[m], plain, batched);
+    }
+    expect("query: samples checks every triple's numbers", "Material \"matte\"\nsamples 0 0 1 0.5 0.5 0.5 0.5 1 0.5",
+           "ok\nerror samples: uc, u1 and u2 of triple 2 must be in [0, 1)");
+    expect("query: evals needs whole triples",
+           "Material \"matte\"\nevals 0 0 1 0 0 1 0.5\nevals 0 0 1\nevals 0 0 1 0 0 x",
+           "ok\nerror evals: needs wox woy woz and one or more triples (7 numbers, not 3 + a multiple of 3)\n"
+           "error evals: needs wox woy woz and one or more triples (3 numbers, not 3 + a multiple of 3)\n"
+           "error evals: value 6 is not a finite number");
+    /* 257 triples: one more than the conventions' batch */
+    at = (size_t)snprintf(big, sizeof big, "Material \"matte\"\nevals 0 0 1");
+    for (i = 0; i < MT_QUERY_BATCH + 1; ++i) at += (size_t)snprintf(big + at, sizeof big - at, " 0 0 1");
+    expect("query: evals takes at most batch triples", big,
+           "ok\nerror evals: more than 256 triples after wo on one line (conventions: batch 256)");
+    /* an answer longer than the caller's buffer is an error, not a cut answer */
+    {
+        mt_error err;
+        mt_query *q = mt_query_create(NULL, &err);
+        char out[200];
+        mt_query_line(q, "Material \"matte\"", out, sizeof out);
+        mt_query_line(q, "samples 0 0 1 0.1 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9", out, sizeof out);
+        t_check(!strcmp(out, "error samples: the answer to 3 triples does not fit in 200 bytes"),
+                "query: a batched answer too long for the caller's buffer is an error", "answered %s", out);
+        mt_query_destroy(q);
+    }
+}
+
 int main(void)
 {
     test_version();
@@ -240,5 +295,6 @@ int main(void)
     test_lines();
     test_answers();
     test_numbers();
+    test_batched();
     return t_status();
 }

@@ -3,13 +3,17 @@
  * appends grow it and keep it NUL-terminated, a long line goes in whole,
  * and cf_format_g9 writes exactly what printf("%.9g") writes for every
  * float it is given (the query lines --impl sends are written with it, so
- * a difference would change the inputs an implementation reads).
+ * a difference would change the inputs an implementation reads), and the
+ * library's mt__strtod (materia-query and the suite read every number of
+ * the protocol with it) gives strtod's value and end for every text.
  */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "../conformance/strbuf.h"
+#include "core/numtext.h"
 #include "support/check.h"
 
 static uint32_t rng(uint32_t *s)
@@ -27,6 +31,17 @@ static int differs(float f, char *first, size_t n)
     int la = cf_format_g9(a, sizeof a, f), lb = snprintf(b, sizeof b, "%.9g", (double)f);
     if (la == lb && !strcmp(a, b)) return 0;
     if (!first[0]) snprintf(first, n, "%a: \"%s\", printf \"%s\"", (double)f, a, b);
+    return 1;
+}
+
+/* 0 when mt__strtod and strtod agree on text (value bit for bit, end); else
+ * prints both. */
+static int reads_differently(const char *text, char *first, size_t n)
+{
+    char *ea, *eb;
+    double a = mt__strtod(text, &ea), b = strtod(text, &eb);
+    if (ea == eb && (memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b))) return 0;
+    if (!first[0]) snprintf(first, n, "\"%s\": %a end %d, strtod %a end %d", text, a, (int)(ea - text), b, (int)(eb - text));
     return 1;
 }
 
@@ -78,5 +93,36 @@ int main(void)
     }
     t_check(bad == 0, "cf_format_g9 writes what printf(\"%.9g\") writes", "%ld of %ld differ, first %s", bad, tried,
             first);
+    /* strtod: texts of every shape the protocol and its errors have, the
+     * suite's %.9g of random floats, %.17g and %.15g of random doubles,
+     * and random digit strings with a point and an exponent */
+    {
+        static const char *const texts[] = {"0", "-0", "0.5", ".5", "5.", ".", "-", "", " 1", "+1", "1e", "1e+",
+                                            "1e-3x", "1.5e308", "1e309", "4.9e-324", "1e-400", "0x1p-3", "-0X1.8P1",
+                                            "inf", "-nan", "nan(1)", "00012.50", "0.000000000000000000000012345",
+                                            "123456789012345678901234567890", "9007199254740993", "1e22", "1e23",
+                                            "3 4", "2e22", "0.1\n", "7e-23", "12345678901234567e-5"};
+        char txt[64];
+        first[0] = 0;
+        bad = tried = 0;
+        for (i = 0; i < (long)(sizeof texts / sizeof texts[0]); ++i, ++tried) bad += reads_differently(texts[i], first, sizeof first);
+        for (i = 0; i < 600000; ++i, ++tried) {
+            uint32_t a = rng(&s), c = rng(&s);
+            float f;
+            double d;
+            memcpy(&f, &a, sizeof f);
+            d = ((double)a * 4294967296.0 + c) / 18446744073709551616.0 * pow(10, (int)(c % 60) - 30);
+            switch (i % 4) {
+            case 0: cf_format_g9(txt, sizeof txt, f); break;
+            case 1: snprintf(txt, sizeof txt, "%.17g", (c & 1) ? -d : d); break;
+            case 2: snprintf(txt, sizeof txt, "%.15g", d); break;
+            default:
+                snprintf(txt, sizeof txt, "%s%u.%ue%d", (c & 2) ? "-" : "", a % 100000u, c % 1000000u, (int)(a % 61) - 30);
+            }
+            bad += reads_differently(txt, first, sizeof first);
+        }
+        t_check(bad == 0, "mt__strtod reads what strtod reads (value and end)", "%ld of %ld differ, first %s", bad, tried,
+                first);
+    }
     return t_status();
 }

@@ -10,9 +10,11 @@
  * plugin builds the configuration from them (its open) when the first
  * eval or sample after them comes, so an error or an unsupported statement
  * is the answer to that query. eval and sample call the plugin with one
- * query each; the answers are printed with %.9g (a float plugin) or %.17g.
- * Input is read in large blocks, and the answers are written out whenever
- * every complete line read so far is answered.
+ * query each, evals and samples (protocol 3: the conventions answer adds
+ * "batch 256") with the whole line's triples at once; the answers are
+ * printed as %.9g (a float plugin, with the library's fast exact
+ * formatting) or %.17g. Input is read in large blocks, and the answers are
+ * written out whenever every complete line read so far is answered.
  */
 #include <dlfcn.h>
 #include <errno.h>
@@ -23,9 +25,11 @@
 #include <unistd.h>
 #include "materia/config.h"
 #include "materia/impl.h"
+#include "core/numtext.h"
 
 #define MAX_LINES 256
 #define MAX_LINE 65536
+#define BATCH 256 /* the most triples of an evals or samples line */
 
 typedef struct host {
     const mt_impl_plugin *p;
@@ -49,24 +53,31 @@ static void reset(host *h)
     h->open_status = -1;
 }
 
-/* Numbers of a query: exactly n finite ones after its word. 0 or -1. */
+/* Numbers of a query: n finite ones after its word, exactly (n > 0), or
+ * three and then triples up to -n in all (n < 0). Their count, or -1. */
 static int numbers(const char *s, double *v, int n)
 {
-    int i;
-    for (i = 0; i < n; ++i) {
+    int i, most = n > 0 ? n : -n;
+    for (i = 0;; ++i) {
         char *e;
-        v[i] = strtod(s, &e);
+        while (*s == ' ' || *s == '\t') s++;
+        if (!*s || i == most) break;
+        v[i] = mt__strtod(s, &e); /* strtod's value, faster (core/numtext.h) */
         if (e == s || !isfinite(v[i])) return -1;
         s = e;
     }
-    while (*s == ' ' || *s == '\t') s++;
-    return *s ? -1 : 0;
+    if (*s) return -1;
+    return n > 0 ? (i == n ? i : -1) : (i >= 6 && i % 3 == 0 ? i : -1);
 }
 
 static void num(const host *h, double v, int last)
 {
-    if (!h->dbl) v = (float)v;
-    printf(h->fmt, v);
+    char b[40];
+    if (h->dbl)
+        snprintf(b, sizeof b, "%.17g", v);
+    else
+        mt__format_g9(b, sizeof b, (float)v);
+    fputs(b, stdout);
     putchar(last ? '\n' : ' ');
 }
 
@@ -97,10 +108,10 @@ static void query(host *h, const char *line)
     memcpy(word, line, wl);
     word[wl] = 0;
     if (!strcmp(word, "version")) {
-        printf("protocol 2 %s %s precision %s\n", h->p->name ? h->p->name : "plugin", h->p->version ? h->p->version : "0",
+        printf("protocol 3 %s %s precision %s\n", h->p->name ? h->p->name : "plugin", h->p->version ? h->p->version : "0",
                h->p->precision);
     } else if (!strcmp(word, "conventions")) {
-        printf("%s\n", h->p->conventions ? h->p->conventions : "transport importance sample-numbers 3");
+        printf("%s batch %d\n", h->p->conventions ? h->p->conventions : "transport importance sample-numbers 3", BATCH);
     } else if (!strcmp(word, "mode")) {
         char m[32];
         if (sscanf(rest, " %31s", m) != 1 || (strcmp(m, "pbrt-v2") && strcmp(m, "corrected"))) {
@@ -118,52 +129,64 @@ static void query(host *h, const char *line)
         strcpy(h->lines[h->nlines++], line);
         reset(h);
         printf("ok\n");
-    } else if (!strcmp(word, "eval") || !strcmp(word, "sample")) {
-        double v[6];
-        int r, k;
+    } else if (!strcmp(word, "eval") || !strcmp(word, "sample") || !strcmp(word, "evals") || !strcmp(word, "samples")) {
+        static double v[3 + 3 * BATCH];
+        static mt_impl_v3 wo[BATCH], wi[BATCH];
+        static float u[BATCH][3];
+        static mt_impl_eval e[BATCH];
+        static mt_impl_sample smp[BATCH];
+        int r, k, i, n, batched = word[strlen(word) - 1] == 's', ev = word[0] == 'e';
         char msg[1024] = "";
-        mt_impl_v3 wo;
-        if (numbers(rest, v, 6)) {
-            printf("error %s: needs %s\n", word, word[0] == 'e' ? "wox woy woz wix wiy wiz" : "wox woy woz uc u1 u2");
+        if ((n = numbers(rest, v, batched ? -(3 + 3 * BATCH) : 6)) < 0) {
+            if (batched)
+                printf("error %s: needs wox woy woz and 1 to %d triples of finite numbers\n", word, BATCH);
+            else
+                printf("error %s: needs %s\n", word, ev ? "wox woy woz wix wiy wiz" : "wox woy woz uc u1 u2");
             return;
         }
+        n = n / 3 - 1;
         if ((r = ensure_open(h)) != MT_IMPL_OK) {
             answer_error(r, h->open_msg);
             return;
         }
-        wo.x = v[0];
-        wo.y = v[1];
-        wo.z = v[2];
-        if (word[0] == 'e') {
-            mt_impl_v3 wi;
-            mt_impl_eval e;
-            wi.x = v[3];
-            wi.y = v[4];
-            wi.z = v[5];
-            if ((r = h->p->eval(h->cfg, 1, &wo, &wi, &e, msg, sizeof msg)) != MT_IMPL_OK) {
-                answer_error(r, msg);
-                return;
+        for (i = 0; i < n; ++i) {
+            wo[i].x = v[0];
+            wo[i].y = v[1];
+            wo[i].z = v[2];
+            if (ev) {
+                wi[i].x = v[3 + 3 * i];
+                wi[i].y = v[4 + 3 * i];
+                wi[i].z = v[5 + 3 * i];
+                continue;
             }
-            for (k = 0; k < 3; ++k) num(h, e.f[k], 0);
-            num(h, e.pdf, 1);
-        } else {
-            float u[1][3];
-            mt_impl_sample s;
             for (k = 0; k < 3; ++k) {
-                u[0][k] = (float)v[3 + k];
-                if (!(u[0][k] >= 0 && u[0][k] < 1)) {
-                    printf("error sample: uc u1 u2 must be in [0, 1)\n");
+                u[i][k] = (float)v[3 + 3 * i + k];
+                if (!(u[i][k] >= 0 && u[i][k] < 1)) {
+                    printf("error %s: uc u1 u2 must be in [0, 1)\n", word);
                     return;
                 }
             }
-            if ((r = h->p->sample(h->cfg, 1, &wo, (const float(*)[3])u, &s, msg, sizeof msg)) != MT_IMPL_OK) {
+        }
+        if (ev) {
+            if ((r = h->p->eval(h->cfg, n, wo, wi, e, msg, sizeof msg)) != MT_IMPL_OK) {
                 answer_error(r, msg);
                 return;
             }
-            for (k = 0; k < 3; ++k) num(h, s.wi[k], 0);
-            for (k = 0; k < 3; ++k) num(h, s.f[k], 0);
-            num(h, s.pdf, 0);
-            printf("%u\n", s.flags);
+            for (i = 0; i < n; ++i) {
+                for (k = 0; k < 3; ++k) num(h, e[i].f[k], 0);
+                num(h, e[i].pdf, i == n - 1);
+            }
+        } else {
+            if ((r = h->p->sample(h->cfg, n, wo, (const float(*)[3])u, smp, msg, sizeof msg)) != MT_IMPL_OK) {
+                answer_error(r, msg);
+                return;
+            }
+            for (i = 0; i < n; ++i) {
+                for (k = 0; k < 3; ++k) num(h, smp[i].wi[k], 0);
+                for (k = 0; k < 3; ++k) num(h, smp[i].f[k], 0);
+                num(h, smp[i].pdf, 0);
+                printf(i == n - 1 ? "%u\n" : "%u ", smp[i].flags);
+            }
         }
     } else {
         printf("error unsupported: the plugin interface has no \"%s\" query\n", word);
@@ -185,7 +208,7 @@ static void statement(host *h, const char *text)
 static int is_query(const char *s)
 {
     static const char *const words[] = {"version", "conventions", "mode", "at", "eval", "sample",
-                                        "rho", "bssrdf", "shading", "texture"};
+                                        "rho", "bssrdf", "shading", "texture", "evals", "samples"};
     size_t i, wl = strcspn(s, " \t");
     for (i = 0; i < sizeof words / sizeof words[0]; ++i)
         if (wl == strlen(words[i]) && !strncmp(s, words[i], wl)) return 1;

@@ -115,7 +115,7 @@ int main(int argc, char **argv)
     int radiance = 0;
     mt_query *q;
     mt_error err;
-    char out[4096];
+    static char out[MT_QUERY_ANSWER_SIZE];
     reader in = {NULL, 0, 0, 0, 0};
     int i;
     for (i = 1; i < argc; ++i) {

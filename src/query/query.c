@@ -22,6 +22,7 @@
 #define MT_QUERY_RHO_TOL 1e-6
 #endif
 #include "core/alloc.h"
+#include "core/numtext.h"
 #include "params/parser_internal.h"
 
 #if MT_USE_DOUBLE
@@ -216,7 +217,7 @@ static int numbers(const char *s, double *v, int n, const char **rest)
         char *end;
         while (isspace((unsigned char)*s)) s++;
         if (!*s) return i;
-        v[i] = strtod(s, &end);
+        v[i] = mt__strtod(s, &end); /* strtod's value, faster (core/numtext.h) */
         if (end == s || !isfinite(v[i])) return -1;
         s = end;
     }
@@ -290,21 +291,67 @@ static int query_at(mt_query *q, const char *args, char *out, size_t size)
     return answer(out, size, "ok");
 }
 
+/* ---- the answers of eval and sample --------------------------------------
+ * Written number by number with the fast exact "%.9g" of a float build
+ * (core/numtext.h; the same text as printf's), one space before each value
+ * but the first of a line. Each returns where it ended; at or past size
+ * when the answer did not fit (out is then cut, not terminated there). */
+static size_t put_num(char *out, size_t at, size_t size, mt_real v)
+{
+    if (at) {
+        if (at + 1 >= size) return size;
+        out[at++] = ' ';
+    }
+    if (size - at < 32) return size;
+#if MT_USE_DOUBLE
+    return at + (size_t)snprintf(out + at, size - at, NUM, (double)v);
+#else
+    return at + (size_t)mt__format_g9(out + at, size - at, v);
+#endif
+}
+
+static size_t put_eval(mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, char *out, size_t at, size_t size)
+{
+    mt_rgb f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
+    at = put_num(out, at, size, f.c[0]);
+    at = put_num(out, at, size, f.c[1]);
+    at = put_num(out, at, size, f.c[2]);
+    return put_num(out, at, size, mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL));
+}
+
+static size_t put_sample(mt_bsdf *b, mt_vec3 wo, const double *u, char *out, size_t at, size_t size)
+{
+    mt_bsdf_sample s = mt_bsdf_sample_f(b, wo, (mt_real)u[0], (mt_real)u[1], (mt_real)u[2], MT_BSDF_ALL);
+    at = put_num(out, at, size, s.wi.x);
+    at = put_num(out, at, size, s.wi.y);
+    at = put_num(out, at, size, s.wi.z);
+    at = put_num(out, at, size, s.f.c[0]);
+    at = put_num(out, at, size, s.f.c[1]);
+    at = put_num(out, at, size, s.f.c[2]);
+    at = put_num(out, at, size, s.pdf);
+    if (size - at < 16) return size;
+    return at + (size_t)snprintf(out + at, size - at, " %u", s.type);
+}
+
+static int unit_numbers(const double *u)
+{
+    return u[0] >= 0 && u[0] < 1 && u[1] >= 0 && u[1] < 1 && u[2] >= 0 && u[2] < 1;
+}
+
 static int query_eval(mt_query *q, const char *args, char *out, size_t size)
 {
     double v[6];
     mt_error err;
     mt_bsdf *b;
     mt_vec3 wo, wi;
-    mt_rgb f;
+    size_t at;
     if (!exactly(args, v, 6)) return fail_msg(out, size, "eval: needs wox woy woz wix wiy wiz");
     mt_error_clear(&err);
     if (!(b = bsdf_here(q, &err))) return fail(out, size, &err);
     wo = v3(v);
     wi = v3(v + 3);
-    f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
-    return answer(out, size, NUM " " NUM " " NUM " " NUM, (double)f.c[0], (double)f.c[1], (double)f.c[2],
-                  (double)mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL));
+    at = put_eval(b, wo, wi, out, 0, size);
+    return at < size ? 1 : fail_msg(out, size, "eval: the answer does not fit the caller's buffer");
 }
 
 static int query_sample(mt_query *q, const char *args, char *out, size_t size)
@@ -312,15 +359,72 @@ static int query_sample(mt_query *q, const char *args, char *out, size_t size)
     double v[6];
     mt_error err;
     mt_bsdf *b;
-    mt_bsdf_sample s;
+    size_t at;
     if (!exactly(args, v, 6)) return fail_msg(out, size, "sample: needs wox woy woz uc u1 u2");
-    if (!(v[3] >= 0 && v[3] < 1 && v[4] >= 0 && v[4] < 1 && v[5] >= 0 && v[5] < 1))
-        return fail_msg(out, size, "sample: uc, u1 and u2 must be in [0, 1)");
+    if (!unit_numbers(v + 3)) return fail_msg(out, size, "sample: uc, u1 and u2 must be in [0, 1)");
     mt_error_clear(&err);
     if (!(b = bsdf_here(q, &err))) return fail(out, size, &err);
-    s = mt_bsdf_sample_f(b, v3(v), (mt_real)v[3], (mt_real)v[4], (mt_real)v[5], MT_BSDF_ALL);
-    return answer(out, size, NUM " " NUM " " NUM " " NUM " " NUM " " NUM " " NUM " %u", (double)s.wi.x, (double)s.wi.y,
-                  (double)s.wi.z, (double)s.f.c[0], (double)s.f.c[1], (double)s.f.c[2], (double)s.pdf, s.type);
+    at = put_sample(b, v3(v), v + 3, out, 0, size);
+    return at < size ? 1 : fail_msg(out, size, "sample: the answer does not fit the caller's buffer");
+}
+
+/* ---- batched queries (protocol 3) ----------------------------------------
+ * "evals wo wi wi ..." and "samples wo u u ...": one wo, then one to
+ * MT_QUERY_BATCH triples, answered on one line with 4 (8) numbers per
+ * triple, in order. Any bad number is an error for the whole line, naming
+ * the value; the client asks again one query a line to learn which. */
+static int batch_numbers(const char *word, const char *args, double *v, int *k, char *out, size_t size)
+{
+    const char *s = args;
+    int n = 0;
+    for (;;) {
+        char *end;
+        while (isspace((unsigned char)*s)) s++;
+        if (!*s) break;
+        if (n == 3 + 3 * MT_QUERY_BATCH)
+            return answer(out, size, "error %s: more than %d triples after wo on one line (conventions: batch %d)", word,
+                          MT_QUERY_BATCH, MT_QUERY_BATCH);
+        v[n] = mt__strtod(s, &end);
+        if (end == s || !isfinite(v[n]) || (*end && !isspace((unsigned char)*end)))
+            return answer(out, size, "error %s: value %d is not a finite number", word, n + 1);
+        s = end;
+        n++;
+    }
+    if (n < 6 || n % 3)
+        return answer(out, size, "error %s: needs wox woy woz and one or more triples (%d numbers, not 3 + a multiple of 3)",
+                      word, n);
+    *k = n / 3 - 1;
+    return 0;
+}
+
+/* evals (sample 0) or samples (sample 1). */
+static int query_batch(mt_query *q, const char *args, char *out, size_t size, int sample)
+{
+    double v[3 + 3 * MT_QUERY_BATCH];
+    const char *word = sample ? "samples" : "evals";
+    mt_error err;
+    mt_bsdf *b;
+    mt_vec3 wo;
+    size_t at = 0;
+    int k = 0, i;
+    if (batch_numbers(word, args, v, &k, out, size)) return 1;
+    for (i = 0; sample && i < k; ++i)
+        if (!unit_numbers(v + 3 + 3 * i))
+            return answer(out, size, "error samples: uc, u1 and u2 of triple %d must be in [0, 1)", i + 1);
+    mt_error_clear(&err);
+    if (!(b = bsdf_here(q, &err))) return fail(out, size, &err);
+    wo = v3(v);
+    for (i = 0; i < k && at < size; ++i)
+        at = sample ? put_sample(b, wo, v + 3 + 3 * i, out, at, size) : put_eval(b, wo, v3(v + 3 + 3 * i), out, at, size);
+    if (at >= size) return answer(out, size, "error %s: the answer to %d triples does not fit in %zu bytes", word, k, size);
+    return 1;
+}
+
+static int query_evals(mt_query *q, const char *args, char *out, size_t size) { return query_batch(q, args, out, size, 0); }
+
+static int query_samples(mt_query *q, const char *args, char *out, size_t size)
+{
+    return query_batch(q, args, out, size, 1);
 }
 
 static int query_rho(mt_query *q, const char *args, char *out, size_t size)
@@ -402,13 +506,14 @@ static int query_mode(mt_query *q, const char *args, char *out, size_t size)
 }
 
 /* The conventions of its answers (docs/PROTOCOL.md): pbrt-v2's BTDF values
- * (importance) unless the session's radiance-transmission option is on, and
- * pbrt-v2's three random numbers. */
+ * (importance) unless the session's radiance-transmission option is on,
+ * pbrt-v2's three random numbers, and the batched queries (evals, samples)
+ * of up to MT_QUERY_BATCH triples a line. */
 static int query_conventions(mt_query *q, const char *args, char *out, size_t size)
 {
     if (!only_space(args)) return fail_msg(out, size, "conventions: takes no arguments");
-    return answer(out, size, "transport %s sample-numbers 3",
-                  (q->options & MT_OPT_RADIANCE_TRANSMISSION) ? "radiance" : "importance");
+    return answer(out, size, "transport %s sample-numbers 3 batch %d",
+                  (q->options & MT_OPT_RADIANCE_TRANSMISSION) ? "radiance" : "importance", MT_QUERY_BATCH);
 }
 
 /* The protocol's version (docs/PROTOCOL.md), materia's, and the precision
@@ -430,7 +535,7 @@ static int dispatch(mt_query *q, const char *line, char *out, size_t size)
     } queries[] = {{"mode", query_mode},     {"at", query_at},         {"eval", query_eval},
                    {"sample", query_sample}, {"rho", query_rho},       {"bssrdf", query_bssrdf},
                    {"shading", query_shading}, {"texture", query_texture}, {"version", query_version},
-                   {"conventions", query_conventions}};
+                   {"conventions", query_conventions}, {"evals", query_evals}, {"samples", query_samples}};
     const char *s = line;
     size_t len = 0, i;
     while (isspace((unsigned char)*s)) s++;

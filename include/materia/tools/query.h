@@ -15,7 +15,9 @@
  *   shading   -> nx ny nz dpdux dpduy dpduz dpdvx dpdvy dpdvz (after bump)
  *   texture "name"                                 -> value | r g b
  *   version      -> protocol <N> materia <version> precision float|double
- *   conventions  -> transport importance|radiance sample-numbers 3
+ *   conventions  -> transport importance|radiance sample-numbers 3 batch 256
+ *   evals wox woy woz wix wiy wiz [wix wiy wiz]...  -> 4 numbers per wi
+ *   samples wox woy woz uc u1 u2 [uc u1 u2]...      -> 8 numbers per triple
  * A bad line is answered "error <message>" and the session goes on. A
  * statement continues on the next line while a bracket or string is open.
  * The whole protocol, with its rules for state, errors and numbers, is
@@ -37,7 +39,14 @@ extern "C" {
 
 /* Raised when a line type, an answer's shape or a rule of docs/PROTOCOL.md
  * changes; the "version" query answers it. */
-#define MT_QUERY_PROTOCOL_VERSION 2
+#define MT_QUERY_PROTOCOL_VERSION 3
+
+/* The most triples an "evals" or "samples" line may carry after its wo (the
+ * "batch" of the conventions answer), and an out buffer that holds the
+ * answer of any line (in double, 8 x 256 numbers of up to 25 bytes). An
+ * answer that does not fit a smaller buffer is an error answer. */
+#define MT_QUERY_BATCH 256
+#define MT_QUERY_ANSWER_SIZE 65536
 
 typedef struct mt_query mt_query;
 
@@ -48,7 +57,8 @@ MT_API mt_query *mt_query_create(const char *dir, mt_error *err);
 MT_API void mt_query_destroy(mt_query *q);
 
 /* Feeds one line (without its newline). Returns 1 and writes the answer into
- * out (size bytes, always terminated; an answer that does not fit is cut)
+ * out (size bytes, always terminated; an answer that does not fit is cut,
+ * or for eval, sample, evals and samples an error answer saying so)
  * when the line completes a query, 0 when it was blank, a comment, or the
  * start of a statement that continues on the next line. A bad query is
  * answered "error <message>": this never fails otherwise. */
