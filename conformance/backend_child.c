@@ -43,12 +43,14 @@ static int fail(cf_impl *im, int status, const char *fmt, ...)
     return im->failed = status;
 }
 
-/* Appends " v" (cf_format_num: the same text as printf's %.9g for the
- * suite's float inputs, without its cost) to line, at len. */
-static size_t put_value(char *line, size_t len, size_t size, double v)
+/* Appends " v" to line, at len: in C99 hexadecimal (exact whatever the
+ * precision) to an implementation that reads it, else cf_format_num (the
+ * same text as printf's %.9g for the suite's float inputs, without its
+ * cost). */
+static size_t put_value(char *line, size_t len, size_t size, double v, int hex)
 {
     line[len++] = ' ';
-    return len + (size_t)cf_format_num(line + len, size - len, v);
+    return len + (size_t)(hex ? mt__format_hex(line + len, size - len, v) : cf_format_num(line + len, size - len, v));
 }
 
 /* Appends the lines of n queries WORD wo[i] v[i] to im->text: one plain
@@ -67,14 +69,14 @@ static int put_queries(cf_impl *im, const char *word, int n, const cf_v3 *wo, co
         start[lines++] = i;
         memcpy(line, word, wl);
         if (k > 1) line[len++] = 's'; /* evals, samples */
-        len = put_value(line, len, sizeof line, wo[i].x);
-        len = put_value(line, len, sizeof line, wo[i].y);
-        len = put_value(line, len, sizeof line, wo[i].z);
+        len = put_value(line, len, sizeof line, wo[i].x, im->conv.hex);
+        len = put_value(line, len, sizeof line, wo[i].y, im->conv.hex);
+        len = put_value(line, len, sizeof line, wo[i].z, im->conv.hex);
         cf_strbuf_append(&im->text, line, len); /* a failure stays in text.failed: send() reports it */
         for (j = i; j < i + k; ++j) {
-            len = put_value(line, 0, sizeof line, v[j][0]);
-            len = put_value(line, len, sizeof line, v[j][1]);
-            len = put_value(line, len, sizeof line, v[j][2]);
+            len = put_value(line, 0, sizeof line, v[j][0], im->conv.hex);
+            len = put_value(line, len, sizeof line, v[j][1], im->conv.hex);
+            len = put_value(line, len, sizeof line, v[j][2], im->conv.hex);
             cf_strbuf_append(&im->text, line, len);
         }
         cf_strbuf_append(&im->text, "\n", 1);
@@ -181,13 +183,14 @@ static int c_open(cf_impl *im, const cf_case *c)
 {
     int i;
     if (cf_child_start(&im->child, im->command, im->timeout)) return fail(im, CF_FAILED, "%s", im->child.msg);
-    cf_strbuf_printf(&im->text, "%s\n", im->mode_line);
+    /* the mode, "numbers hex" when it takes it, the statements */
+    cf_strbuf_printf(&im->text, "%s\n%s", im->mode_line, im->conv.hex ? "numbers hex\n" : "");
     for (i = 0; i < c->nlines; ++i) cf_strbuf_printf(&im->text, "%s\n", c->lines[i]);
-    if (send(im, c->nlines + 1, c->nlines + 1)) return im->failed;
-    for (i = 0; i <= c->nlines; ++i)
+    if (send(im, c->nlines + 1 + im->conv.hex, c->nlines + 1 + im->conv.hex)) return im->failed;
+    for (i = 0; i <= c->nlines + im->conv.hex; ++i)
         if (strcmp(im->ans[i], "ok")) {
             char q[300];
-            shorten(i ? c->lines[i - 1] : im->mode_line, q, sizeof q);
+            shorten(!i ? im->mode_line : i == 1 && im->conv.hex ? "numbers hex" : c->lines[i - 1 - im->conv.hex], q, sizeof q);
             return bad_answer(im, q, im->ans[i], "not \"ok\"");
         }
     cf_strbuf_clear(&im->text);

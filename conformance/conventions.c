@@ -14,6 +14,9 @@
  *   batch N
  *       protocol 3: it answers "evals" and "samples" lines of up to N
  *       triples (N >= 1; not a convention of its values: formatted apart).
+ *   numbers hex|decimal
+ *       protocol 3: hex, it reads C99 hexadecimal floats in queries and
+ *       writes them after the line "numbers hex" (formatted apart too).
  *
  * And "unsupported": an error answer whose message (after any
  * "FILE:LINE:COL:" position) starts with the word unsupported.
@@ -29,6 +32,7 @@ cf_conventions cf_conventions_default(void)
     c.transport = CF_IMPORTANCE;
     c.sample_numbers = 3;
     c.batch = 1;
+    c.hex = 0;
     return c;
 }
 
@@ -76,6 +80,15 @@ int cf_conventions_parse(const char *answer, cf_conventions *c, char *why, size_
                 return -1;
             }
             out.batch = (int)b;
+        } else if (kl == 7 && !strncmp(s, "numbers", 7)) {
+            if (vl == 3 && !strncmp(v, "hex", 3))
+                out.hex = 1;
+            else if (vl == 7 && !strncmp(v, "decimal", 7))
+                out.hex = 0;
+            else {
+                snprintf(why, n, "numbers \"%.*s\" is neither hex nor decimal", (int)(vl > 20 ? 20 : vl), v);
+                return -1;
+            }
         } else if (kl == 14 && !strncmp(s, "sample-numbers", 14)) {
             if (vl == 1 && (*v == '3' || *v == '2'))
                 out.sample_numbers = *v - '0';

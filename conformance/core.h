@@ -30,6 +30,7 @@ typedef struct cf_conventions {
     int transport;      /* CF_IMPORTANCE (pbrt-v2's BTDF values) or CF_RADIANCE */
     int sample_numbers; /* 3: uc chooses, u1 u2 direct; 2: uc chooses and is rescaled, u1 second */
     int batch;          /* the most triples of an evals/samples line (protocol 3); 1: none */
+    int hex;            /* it reads, and after "numbers hex" writes, C99 hexadecimal floats (protocol 3) */
 } cf_conventions;
 
 /* pbrt-v2's: importance, 3. */

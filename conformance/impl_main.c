@@ -166,7 +166,7 @@ static void usage(FILE *f, const char *argv0)
     fprintf(f,
             "usage: %s --impl 'COMMAND' [--mode pbrt-v2|corrected] [--compare materia|none] [--catalog FILE]...\n"
             "       [--only REGEX] [--skip REGEX] [--check NAME] [--wo K] [--quick] [--samples N] [--cells N] [--significance P]\n"
-            "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS] [--no-batch]\n"
+            "       [--transport importance|radiance] [--sample-numbers 3|2] [--data DIR] [--timeout SECONDS] [--plain]\n"
             "       [--threads N] [--report FILE] [--plots DIR [--plots-all]] [--repro DIR] [--power EPS] [--seed S]\n"
             "       %s --impl-inprocess ...   materia itself, in this process, in place of COMMAND\n"
             "       %s --impl-lib PLUGIN.so [--impl-arg STRING] ...   a plugin (include/materia/impl.h)\n"
@@ -197,8 +197,9 @@ static void usage(FILE *f, const char *argv0)
             "  --data DIR     where the suite writes the files configurations name (default: a\n"
             "                 temporary directory); they reach COMMAND as absolute paths\n"
             "  --timeout S    seconds allowed for each answer, > 0 and at most 1e6 (default 10)\n"
-            "  --no-batch     one query a line, even to an implementation whose conventions announce\n"
-            "                 batched lines (default: batched lines when it does; docs/PROTOCOL.md)\n"
+            "  --plain        one query a line, decimal numbers, even to an implementation whose\n"
+            "                 conventions announce batch N or numbers hex (default: those when it does;\n"
+            "                 docs/PROTOCOL.md)\n"
             "  --samples N    samples per incoming direction, 100 to 1e8 (default 40000; --quick 8000)\n"
             "  --cells N      N x (N+1) chi-square cells, 4 to 200 (default 20; --quick 12)\n",
             argv0, argv0, argv0);
@@ -231,7 +232,7 @@ typedef struct opts {
     long seed;
     const mt_impl_plugin *linked; /* mt_impl_run_suite's plugin */
     const char *catalogs[MAX_CATALOGS];
-    int ncatalogs, quick, plots_all, cells, threads, inprocess, wo, no_batch;
+    int ncatalogs, quick, plots_all, cells, threads, inprocess, wo, plain;
     long samples;
     double timeout, significance;
 } opts;
@@ -280,8 +281,11 @@ static int parse(int argc, char **argv, opts *o, const mt_impl_plugin *linked)
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (!strcmp(a, "--quick") || !strcmp(a, "--plots-all") || !strcmp(a, "--impl-inprocess") ||
-            !strcmp(a, "--no-batch")) {
-            int *flag = a[2] == 'q' ? &o->quick : a[2] == 'p' ? &o->plots_all : a[2] == 'n' ? &o->no_batch : &o->inprocess;
+            !strcmp(a, "--plain")) {
+            int *flag = a[2] == 'q'                    ? &o->quick
+                        : !strcmp(a, "--plots-all") ? &o->plots_all
+                        : !strcmp(a, "--plain")     ? &o->plain
+                                                    : &o->inprocess;
             if (*flag) {
                 fprintf(stderr, "%s: %s is given twice\n", argv[0], a);
                 return 2;
@@ -703,7 +707,7 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
     const mt_impl_plugin *plugin = NULL;
     void *dl = NULL, *pstate = NULL;
     const char *what; /* the implementation, in the header and the report */
-    char whatbuf[4200], nsamp[80];
+    char whatbuf[4200], nsamp[80], lines[96] = "";
     if ((i = parse(argc, argv, &op, linked))) return i == 1 ? 0 : 2;
     p.out = NULL;
     p.n = 0;
@@ -844,7 +848,7 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
     }
     if (op.transport) conv.transport = !strcmp(op.transport, "radiance") ? CF_RADIANCE : CF_IMPORTANCE;
     if (op.snum) conv.sample_numbers = op.snum[0] - '0';
-    if (op.no_batch) conv.batch = 1;
+    if (op.plain) conv.batch = 1, conv.hex = 0;
     run.sample_numbers = conv.sample_numbers;
     run.cfg.samples = op.samples ? op.samples : op.quick ? 8000 : 40000;
     run.cfg.nphi = op.cells ? op.cells : op.quick ? 12 : 20;
@@ -910,15 +914,22 @@ static int impl_main(int argc, char **argv, const mt_impl_plugin *linked)
         snprintf(whatbuf, sizeof whatbuf, "plugin %.4000s", op.lib ? op.lib : "(linked)"), what = whatbuf;
     else
         snprintf(whatbuf, sizeof whatbuf, "'%.4000s'", op.command), what = whatbuf;
+    /* how the text protocol is spoken (docs/PROTOCOL.md, "Batched queries") */
+    if (op.command && !op.inprocess && !plugin && conv.batch > 1)
+        snprintf(lines, sizeof lines, "; lines: evals/samples of up to %d triples%s", conv.batch < 256 ? conv.batch : 256,
+                 conv.hex ? ", hexadecimal numbers" : "");
+    else if (op.command && !op.inprocess && !plugin)
+        snprintf(lines, sizeof lines, "; lines: one query each%s", conv.hex ? ", hexadecimal numbers" : "");
     if (op.power > 0)
         snprintf(nsamp, sizeof nsamp, "samples per direction set by --power %g", op.power);
     else
         snprintf(nsamp, sizeof nsamp, "%ld samples per direction", run.cfg.samples);
     printf("materia-conformance --impl %s (materia %s build, mode %s, compare %s): %d configurations, %s%s,\n%d x %d cells at most, %ld statistical tests, each at %.3g (Sidak: %.2g for the whole run)%s, "
-           "%g s per answer\nimplementation: %s; conventions: %s (%s)\n",
+           "%g s per answer\nimplementation: %s; conventions: %s (%s)%s\n",
            what, mt_precision(), op.mode, op.compare, nsel, nsamp, op.seed ? ", seeded" : "", run.cfg.nphi, run.cfg.nz, run.cfg.tests,
            run.cfg.alpha_test, run.cfg.alpha, op.significance > 0 ? " [--significance]" : "", op.timeout, impl_name, cv,
-           op.transport || op.snum ? "set on the command line" : declared ? "its answer" : "pbrt-v2's: it answers no conventions");
+           op.transport || op.snum ? "set on the command line" : declared ? "its answer" : "pbrt-v2's: it answers no conventions",
+           lines);
     fflush(stdout);
     p.n = nsel;
     p.next = 0;

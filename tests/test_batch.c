@@ -1,10 +1,11 @@
 /*
- * The text protocol's batched lines (protocol 3, docs/PROTOCOL.md,
- * "Batched queries"), proven through the suite:
+ * The text protocol's fast form (protocol 3, docs/PROTOCOL.md, "Batched
+ * queries" and "Hexadecimal numbers"), proven through the suite:
  *
- *  - materia-query and the plugin host announce "batch 256"; the suite's
- *    rows are the same, value for value, with batched lines and with one
- *    query a line (--no-batch), on a few configurations;
+ *  - materia-query and the plugin host announce "batch 256 numbers hex";
+ *    the suite's rows are the same, value for value, with batched lines of
+ *    hexadecimal numbers and with one decimal query a line (--plain), on a
+ *    few configurations;
  *  - an implementation that answers a batched line "error ..." (here
  *    materia-query fed "evalz"/"samplez" for "evals"/"samples", which it
  *    takes for an unknown statement) is asked again one query a line: the
@@ -59,7 +60,7 @@ int main(int argc, char **argv)
     /* materia-query: batched lines (its default) and one query a line */
     snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl %s/materia-query --quick --threads 2 %s 2>&1", bin, bin, only);
     ok = run(cmd, 0, &batched);
-    snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl %s/materia-query --no-batch --quick --threads 2 %s 2>&1", bin,
+    snprintf(cmd, sizeof cmd, "%s/materia-conformance --impl %s/materia-query --plain --quick --threads 2 %s 2>&1", bin,
              bin, only);
     ok = run(cmd, 0, &plain) && ok;
     verdict(ok && strstr(t_rows_of(plain), "PASS  glass default") && !strcmp(t_rows_of(plain), t_rows_of(batched)),
@@ -71,7 +72,7 @@ int main(int argc, char **argv)
              bin, plugins, only);
     ok = run(cmd, 0, &hbatched);
     snprintf(cmd, sizeof cmd,
-             "%s/materia-conformance --impl '%s/materia-plugin-host %s/materia_plugin.so' --no-batch --quick --threads 2 %s "
+             "%s/materia-conformance --impl '%s/materia-plugin-host %s/materia_plugin.so' --plain --quick --threads 2 %s "
              "2>&1",
              bin, bin, plugins, only);
     ok = run(cmd, 0, &hplain) && ok;
@@ -86,7 +87,7 @@ int main(int argc, char **argv)
              bin, bin);
     ok = run(cmd, 0, &fallback);
     snprintf(cmd, sizeof cmd,
-             "%s/materia-conformance --impl %s/materia-query --no-batch --quick --threads 1 --only '^plastic default$' "
+             "%s/materia-conformance --impl %s/materia-query --plain --quick --threads 1 --only '^plastic default$' "
              "--check identity 2>&1",
              bin, bin);
     ok = run(cmd, 0, &onealone) && ok;
@@ -100,7 +101,7 @@ int main(int argc, char **argv)
              bin, bin);
     ok = run(cmd, 1, &bad);
     verdict(ok && t_has_row(bad, "FAIL", "plastic default|protocol|answered too few values (") &&
-                t_has_row(bad, "FAIL", "to the batched line 1 of |\"samples 0.") &&
+                t_has_row(bad, "FAIL", "to the batched line 1 of |\"samples 0x") &&
                 t_has_row(bad, "FAIL", "triples, 8 values each)"),
             "a batched answer one value short: a protocol failure naming the batched line", cmd, bad);
     free(plain);

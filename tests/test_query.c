@@ -87,7 +87,7 @@ static void test_conventions(void)
     double ta, tb;
     const char *glass = "Material \"glass\"\nsample 0 0.6 0.8 0.9 0.5 0.5";
     expect("query: conventions of materia: importance, three numbers", "conventions",
-           "transport importance sample-numbers 3 batch 256");
+           "transport importance sample-numbers 3 batch 256 numbers hex");
     expect("query: conventions takes no arguments", "conventions 1", "error conventions: takes no arguments");
     run(glass, a, sizeof a);
     mt_error_clear(&err);
@@ -103,7 +103,7 @@ static void test_conventions(void)
             if (mt_query_line(q, lines[i], out, sizeof out)) at += (size_t)snprintf(b + at, sizeof b - at, "%s\n", out);
     }
     mt_query_destroy(q);
-    t_check(!strncmp(b, "transport radiance sample-numbers 3 batch 256\n", 46),
+    t_check(!strncmp(b, "transport radiance sample-numbers 3 batch 256 numbers hex\n", 58),
             "query: the radiance option answers transport radiance",
             "answered %s", b);
     /* the sampled transmission's f (4th value) in both */
@@ -262,6 +262,18 @@ static void test_batched(void)
             if (plain[at] == '\n' && ++i != 1 && i != 4) plain[at] = ' ';
         t_check(!strcmp(plain, batched), "query: evals and samples answer the plain queries' text, in order",
                 "%s\nplain:\n%s\nbatched:\n%s", mats[m], plain, batched);
+    }
+    /* numbers hex: the same values, in C99 hexadecimal, read from either form */
+    run("Material \"plastic\"\nsample 0 0.6 0.8 0.1 0.2 0.3\nevals 0 0.6 0.8 0 -0.6 0.8 0.6 0 0.8", plain, sizeof plain);
+    run("Material \"plastic\"\nnumbers hex\nsample 0x0p+0 0x1.3333333333333p-1 0x1.999999999999ap-1 0.1 0.2 0.3\n"
+        "evals 0 0.6 0.8 0 -0.6 0.8 0.6 0 0.8\nnumbers decimal\nnumbers octal",
+        batched, sizeof batched);
+    {
+        char want[8192];
+        snprintf(want, sizeof want, "ok\nok\n%s\nok\nerror numbers: hex or decimal", strchr(plain, '\n') + 1);
+        t_check(!strncmp(batched, "ok\nok\n-0x1.", 11) && same_answers(batched, want),
+                "query: numbers hex answers the same values in C99 hexadecimal; numbers decimal returns", "%s\nwanted\n%s",
+                batched, want);
     }
     expect("query: samples checks every triple's numbers", "Material \"matte\"\nsamples 0 0 1 0.5 0.5 0.5 0.5 1 0.5",
            "ok\nerror samples: uc, u1 and u2 of triple 2 must be in [0, 1)");

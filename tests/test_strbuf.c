@@ -101,7 +101,10 @@ int main(void)
                                             "1e-3x", "1.5e308", "1e309", "4.9e-324", "1e-400", "0x1p-3", "-0X1.8P1",
                                             "inf", "-nan", "nan(1)", "00012.50", "0.000000000000000000000012345",
                                             "123456789012345678901234567890", "9007199254740993", "1e22", "1e23",
-                                            "3 4", "2e22", "0.1\n", "7e-23", "12345678901234567e-5"};
+                                            "3 4", "2e22", "0.1\n", "7e-23", "12345678901234567e-5", "0x1.8p-3",
+                                            "0x1.8p", "0x1.8p+", "0x", "0x.", "0x.8p1", "0x1.fffffffffffffp+1023",
+                                            "0x1p-1074", "0x1.0000000000000801p0", "0x0p+0", "-0x0.000p-5", "0X1P3",
+                                            "0x123456789abcdefp-60", "0x1.8p-1022", "0x1p-1021"};
         char txt[64];
         first[0] = 0;
         bad = tried = 0;
@@ -112,7 +115,9 @@ int main(void)
             double d;
             memcpy(&f, &a, sizeof f);
             d = ((double)a * 4294967296.0 + c) / 18446744073709551616.0 * pow(10, (int)(c % 60) - 30);
-            switch (i % 4) {
+            switch (i % 6) {
+            case 4: mt__format_hex(txt, sizeof txt, (c & 1) ? (double)f : d); break;
+            case 5: snprintf(txt, sizeof txt, "%a", (c & 1) ? (double)f : -d); break;
             case 0: cf_format_g9(txt, sizeof txt, f); break;
             case 1: snprintf(txt, sizeof txt, "%.17g", (c & 1) ? -d : d); break;
             case 2: snprintf(txt, sizeof txt, "%.15g", d); break;
@@ -123,6 +128,26 @@ int main(void)
         }
         t_check(bad == 0, "mt__strtod reads what strtod reads (value and end)", "%ld of %ld differ, first %s", bad, tried,
                 first);
+        /* hexadecimal: every double and float reads back bit for bit */
+        first[0] = 0;
+        bad = tried = 0;
+        for (i = 0; i < 300000; ++i, ++tried) {
+            uint32_t a = rng(&s), c = rng(&s);
+            uint64_t bits = ((uint64_t)a << 32) | c;
+            double d, back;
+            float f;
+            memcpy(&d, &bits, sizeof d);
+            memcpy(&f, &a, sizeof f);
+            if (i & 1) d = f;
+            if (d != d) continue;
+            mt__format_hex(txt, sizeof txt, d);
+            back = strtod(txt, NULL);
+            if (memcmp(&back, &d, sizeof d)) {
+                bad++;
+                if (!first[0]) snprintf(first, sizeof first, "%a written \"%s\"", d, txt);
+            }
+        }
+        t_check(bad == 0, "mt__format_hex reads back to the same double", "%ld of %ld differ, first %s", bad, tried, first);
     }
     return t_status();
 }

@@ -13,7 +13,7 @@
  * query each, evals and samples (protocol 3: the conventions answer adds
  * "batch 256") with the whole line's triples at once; the answers are
  * printed as %.9g (a float plugin, with the library's fast exact
- * formatting) or %.17g. Input is read in large blocks, and the answers are
+ * formatting) or %.17g, or after "numbers hex" as C99 hexadecimal floats. Input is read in large blocks, and the answers are
  * written out whenever every complete line read so far is answered.
  */
 #include <dlfcn.h>
@@ -44,6 +44,7 @@ typedef struct host {
     int depth, quoted;      /* its open brackets and quote */
     const char *fmt;        /* "%.9g" or "%.17g" */
     int dbl;
+    int hex;                /* after "numbers hex": C99 hexadecimal answers */
 } host;
 
 static void reset(host *h)
@@ -73,7 +74,9 @@ static int numbers(const char *s, double *v, int n)
 static void num(const host *h, double v, int last)
 {
     char b[40];
-    if (h->dbl)
+    if (h->hex)
+        mt__format_hex(b, sizeof b, h->dbl ? v : (double)(float)v);
+    else if (h->dbl)
         snprintf(b, sizeof b, "%.17g", v);
     else
         mt__format_g9(b, sizeof b, (float)v);
@@ -111,7 +114,16 @@ static void query(host *h, const char *line)
         printf("protocol 3 %s %s precision %s\n", h->p->name ? h->p->name : "plugin", h->p->version ? h->p->version : "0",
                h->p->precision);
     } else if (!strcmp(word, "conventions")) {
-        printf("%s batch %d\n", h->p->conventions ? h->p->conventions : "transport importance sample-numbers 3", BATCH);
+        printf("%s batch %d numbers hex\n", h->p->conventions ? h->p->conventions : "transport importance sample-numbers 3",
+               BATCH);
+    } else if (!strcmp(word, "numbers")) {
+        char m[16];
+        if (sscanf(rest, " %15s", m) != 1 || (strcmp(m, "hex") && strcmp(m, "decimal"))) {
+            printf("error numbers: hex or decimal\n");
+            return;
+        }
+        h->hex = !strcmp(m, "hex");
+        printf("ok\n");
     } else if (!strcmp(word, "mode")) {
         char m[32];
         if (sscanf(rest, " %31s", m) != 1 || (strcmp(m, "pbrt-v2") && strcmp(m, "corrected"))) {
@@ -208,7 +220,7 @@ static void statement(host *h, const char *text)
 static int is_query(const char *s)
 {
     static const char *const words[] = {"version", "conventions", "mode", "at", "eval", "sample",
-                                        "rho", "bssrdf", "shading", "texture", "evals", "samples"};
+                                        "rho", "bssrdf", "shading", "texture", "evals", "samples", "numbers"};
     size_t i, wl = strcspn(s, " \t");
     for (i = 0; i < sizeof words / sizeof words[0]; ++i)
         if (wl == strlen(words[i]) && !strncmp(s, words[i], wl)) return 1;
@@ -317,6 +329,7 @@ int main(int argc, char **argv)
     h.npending = 0;
     h.depth = h.quoted = 0;
     h.dbl = !strcmp(h.p->precision, "double");
+    h.hex = 0;
     h.fmt = h.dbl ? "%.17g" : "%.9g";
     for (;;) {
         ssize_t got = read(0, buf + have, sizeof buf - 1 - have);

@@ -5,6 +5,8 @@
 #include <string.h>
 #include "core/numtext.h"
 
+static int numtext_digit(char c) { return c >= '0' && c <= '9'; }
+
 /* 5^n for n <= 17: m 5^n stays below 2^64 for a 24-bit float mantissa m. */
 static const unsigned long long numtext_pow5[18] = {
     1ULL, 5ULL, 25ULL, 125ULL, 625ULL, 3125ULL, 15625ULL, 78125ULL, 390625ULL, 1953125ULL, 9765625ULL,
@@ -90,11 +92,113 @@ int mt__format_g9(char *out, size_t size, float f)
     return len;
 }
 
+int mt__format_hex(char *out, size_t size, double v)
+{
+    static const char hex[] = "0123456789abcdef";
+    unsigned long long bits, frac;
+    int e, len = 0, i, ee;
+    char d[24];
+    memcpy(&bits, &v, sizeof bits);
+    e = (int)((bits >> 52) & 0x7ff);
+    frac = bits & 0xfffffffffffffULL;
+    /* NaN, infinities, subnormals, a small buffer: the C library */
+    if (e == 0x7ff || (e == 0 && frac) || size < 32) return snprintf(out, size, "%a", v);
+    if (bits >> 63) out[len++] = '-';
+    out[len++] = '0';
+    out[len++] = 'x';
+    out[len++] = e ? '1' : '0';
+    if (frac) {
+        out[len++] = '.';
+        for (i = 0; i < 13 && frac; ++i) { /* 52 bits, the last zero digits left out */
+            out[len++] = hex[(frac >> 48) & 0xf];
+            frac = (frac << 4) & 0xfffffffffffffULL;
+        }
+    }
+    out[len++] = 'p';
+    ee = e ? e - 1023 : 0;
+    out[len++] = ee < 0 ? '-' : '+';
+    if (ee < 0) ee = -ee;
+    i = 0;
+    do {
+        d[i++] = (char)('0' + ee % 10);
+        ee /= 10;
+    } while (ee);
+    while (i) out[len++] = d[--i];
+    out[len] = 0;
+    return len;
+}
+
+/* A character's hexadecimal value, or -1 (a table: each digit of a number
+ * is read with one load; ASCII). */
+static const signed char numtext_hexval[256] = {
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, -1, -1, -1, -1, -1, -1,
+    -1, 10, 11, 12, 13, 14, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1, 10, 11, 12, 13, 14, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+
+static int numtext_hexdigit(char c) { return numtext_hexval[(unsigned char)c]; }
+
+/* m 2^e for an integer m < 2^53 when the result is a normal double: exact,
+ * with the power of two made from its bits (no libm call). */
+static double numtext_pow2(double m, int e)
+{
+    unsigned long long b;
+    double p;
+    if (e < -1022 || e > 1023) return ldexp(m, e);
+    b = (unsigned long long)(e + 1023) << 52;
+    memcpy(&p, &b, sizeof p);
+    return m * p;
+}
+
+/* A hexadecimal float "[-]0xH[.H...]p[+-]D..." of at most 53 significant
+ * bits and a normal (or zero) result: 1 and *x, *end; else 0 (strtod's). */
+static int numtext_hex(const char *s, double *x, const char **end)
+{
+    const char *p = s;
+    unsigned long long m = 0;
+    int neg = 0, digits = 0, shift = 0, h, ev = 0, eneg = 0;
+    if (*p == '-') {
+        neg = 1;
+        p++;
+    }
+    p += 2; /* "0x" */
+    for (; (h = numtext_hexdigit(*p)) >= 0; ++p) {
+        if (!digits && !h) continue; /* leading zeros */
+        if (++digits > 14) return 0;
+        m = 16 * m + (unsigned)h;
+    }
+    if (*p == '.')
+        for (++p; (h = numtext_hexdigit(*p)) >= 0; ++p) {
+            shift += 4;
+            if (!digits && !h) continue;
+            if (++digits > 14) return 0;
+            m = 16 * m + (unsigned)h;
+        }
+    if (p == s + neg + 2 || (p == s + neg + 3 && s[neg + 2] == '.')) return 0; /* no digit */
+    if ((*p != 'p' && *p != 'P') || !(numtext_digit(p[1]) || ((p[1] == '-' || p[1] == '+') && numtext_digit(p[2]))))
+        return 0; /* no exponent: strtod's (rare; the end differs) */
+    p++;
+    if (*p == '-' || *p == '+') eneg = *p++ == '-';
+    for (; numtext_digit(*p); ++p)
+        if (ev < 100000) ev = 10 * ev + (*p - '0');
+    if (m >> 53) return 0;
+    ev = (eneg ? -ev : ev) - shift;
+    /* m 2^ev exact when it is a normal double: m < 2^53, exponent in range */
+    if (m && (ev < -1022 - 52 + 53 || ev > 1023 - 53)) return 0;
+    *x = numtext_pow2((double)m, ev);
+    if (neg) *x = -*x;
+    *end = p;
+    return 1;
+}
+
 /* 10^k for k <= 22: each exact in a double (5^22 < 2^53). */
 static const double numtext_pow10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                          1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
-static int numtext_digit(char c) { return c >= '0' && c <= '9'; }
 
 double mt__strtod(const char *s, char **end)
 {
@@ -106,8 +210,13 @@ double mt__strtod(const char *s, char **end)
         neg = 1;
         p++;
     }
-    /* a hexadecimal number ("0x"): strtod's */
-    if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) return strtod(s, end);
+    /* a hexadecimal number ("0x"): read here when it is exact, else strtod's */
+    if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) {
+        const char *e;
+        if (!numtext_hex(s, &x, &e)) return strtod(s, end);
+        if (end) *end = (char *)e;
+        return x;
+    }
     while (*p == '0') { /* leading zeros are no significant digits */
         p++;
         any = 1;

@@ -44,6 +44,7 @@ struct mt_query {
     char *pending;    /* a statement waiting for its closing bracket or quote */
     size_t pending_len;
     int line_no, pending_line;
+    int hex;          /* "numbers hex": answers in C99 hexadecimal floats */
     mt_warning_fn warn; /* warnings: unused parameters, redefinitions */
     void *warn_ctx;
 };
@@ -296,13 +297,14 @@ static int query_at(mt_query *q, const char *args, char *out, size_t size)
  * (core/numtext.h; the same text as printf's), one space before each value
  * but the first of a line. Each returns where it ended; at or past size
  * when the answer did not fit (out is then cut, not terminated there). */
-static size_t put_num(char *out, size_t at, size_t size, mt_real v)
+static size_t put_num(char *out, size_t at, size_t size, mt_real v, int hex)
 {
     if (at) {
         if (at + 1 >= size) return size;
         out[at++] = ' ';
     }
     if (size - at < 32) return size;
+    if (hex) return at + (size_t)mt__format_hex(out + at, size - at, (double)v);
 #if MT_USE_DOUBLE
     return at + (size_t)snprintf(out + at, size - at, NUM, (double)v);
 #else
@@ -310,25 +312,25 @@ static size_t put_num(char *out, size_t at, size_t size, mt_real v)
 #endif
 }
 
-static size_t put_eval(mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, char *out, size_t at, size_t size)
+static size_t put_eval(mt_bsdf *b, mt_vec3 wo, mt_vec3 wi, char *out, size_t at, size_t size, int hex)
 {
     mt_rgb f = mt_bsdf_f(b, wo, wi, MT_BSDF_ALL);
-    at = put_num(out, at, size, f.c[0]);
-    at = put_num(out, at, size, f.c[1]);
-    at = put_num(out, at, size, f.c[2]);
-    return put_num(out, at, size, mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL));
+    at = put_num(out, at, size, f.c[0], hex);
+    at = put_num(out, at, size, f.c[1], hex);
+    at = put_num(out, at, size, f.c[2], hex);
+    return put_num(out, at, size, mt_bsdf_pdf(b, wo, wi, MT_BSDF_ALL), hex);
 }
 
-static size_t put_sample(mt_bsdf *b, mt_vec3 wo, const double *u, char *out, size_t at, size_t size)
+static size_t put_sample(mt_bsdf *b, mt_vec3 wo, const double *u, char *out, size_t at, size_t size, int hex)
 {
     mt_bsdf_sample s = mt_bsdf_sample_f(b, wo, (mt_real)u[0], (mt_real)u[1], (mt_real)u[2], MT_BSDF_ALL);
-    at = put_num(out, at, size, s.wi.x);
-    at = put_num(out, at, size, s.wi.y);
-    at = put_num(out, at, size, s.wi.z);
-    at = put_num(out, at, size, s.f.c[0]);
-    at = put_num(out, at, size, s.f.c[1]);
-    at = put_num(out, at, size, s.f.c[2]);
-    at = put_num(out, at, size, s.pdf);
+    at = put_num(out, at, size, s.wi.x, hex);
+    at = put_num(out, at, size, s.wi.y, hex);
+    at = put_num(out, at, size, s.wi.z, hex);
+    at = put_num(out, at, size, s.f.c[0], hex);
+    at = put_num(out, at, size, s.f.c[1], hex);
+    at = put_num(out, at, size, s.f.c[2], hex);
+    at = put_num(out, at, size, s.pdf, hex);
     if (size - at < 16) return size;
     return at + (size_t)snprintf(out + at, size - at, " %u", s.type);
 }
@@ -350,7 +352,7 @@ static int query_eval(mt_query *q, const char *args, char *out, size_t size)
     if (!(b = bsdf_here(q, &err))) return fail(out, size, &err);
     wo = v3(v);
     wi = v3(v + 3);
-    at = put_eval(b, wo, wi, out, 0, size);
+    at = put_eval(b, wo, wi, out, 0, size, q->hex);
     return at < size ? 1 : fail_msg(out, size, "eval: the answer does not fit the caller's buffer");
 }
 
@@ -364,7 +366,7 @@ static int query_sample(mt_query *q, const char *args, char *out, size_t size)
     if (!unit_numbers(v + 3)) return fail_msg(out, size, "sample: uc, u1 and u2 must be in [0, 1)");
     mt_error_clear(&err);
     if (!(b = bsdf_here(q, &err))) return fail(out, size, &err);
-    at = put_sample(b, v3(v), v + 3, out, 0, size);
+    at = put_sample(b, v3(v), v + 3, out, 0, size, q->hex);
     return at < size ? 1 : fail_msg(out, size, "sample: the answer does not fit the caller's buffer");
 }
 
@@ -415,7 +417,8 @@ static int query_batch(mt_query *q, const char *args, char *out, size_t size, in
     if (!(b = bsdf_here(q, &err))) return fail(out, size, &err);
     wo = v3(v);
     for (i = 0; i < k && at < size; ++i)
-        at = sample ? put_sample(b, wo, v + 3 + 3 * i, out, at, size) : put_eval(b, wo, v3(v + 3 + 3 * i), out, at, size);
+        at = sample ? put_sample(b, wo, v + 3 + 3 * i, out, at, size, q->hex)
+                   : put_eval(b, wo, v3(v + 3 + 3 * i), out, at, size, q->hex);
     if (at >= size) return answer(out, size, "error %s: the answer to %d triples does not fit in %zu bytes", word, k, size);
     return 1;
 }
@@ -507,13 +510,26 @@ static int query_mode(mt_query *q, const char *args, char *out, size_t size)
 
 /* The conventions of its answers (docs/PROTOCOL.md): pbrt-v2's BTDF values
  * (importance) unless the session's radiance-transmission option is on,
- * pbrt-v2's three random numbers, and the batched queries (evals, samples)
- * of up to MT_QUERY_BATCH triples a line. */
+ * pbrt-v2's three random numbers, the batched queries (evals, samples)
+ * of up to MT_QUERY_BATCH triples a line, and hexadecimal numbers. */
 static int query_conventions(mt_query *q, const char *args, char *out, size_t size)
 {
     if (!only_space(args)) return fail_msg(out, size, "conventions: takes no arguments");
-    return answer(out, size, "transport %s sample-numbers 3 batch %d",
+    return answer(out, size, "transport %s sample-numbers 3 batch %d numbers hex",
                   (q->options & MT_OPT_RADIANCE_TRANSMISSION) ? "radiance" : "importance", MT_QUERY_BATCH);
+}
+
+/* "numbers hex|decimal" (protocol 3): the form of the numbers of eval,
+ * sample, evals and samples answers from now on. Queries are read in either
+ * form whatever it says. */
+static int query_numbers(mt_query *q, const char *args, char *out, size_t size)
+{
+    char word[16];
+    int end = 0;
+    if (sscanf(args, " %15s%n", word, &end) != 1 || !only_space(args + end) || (strcmp(word, "hex") && strcmp(word, "decimal")))
+        return fail_msg(out, size, "numbers: hex or decimal");
+    q->hex = !strcmp(word, "hex");
+    return answer(out, size, "ok");
 }
 
 /* The protocol's version (docs/PROTOCOL.md), materia's, and the precision
@@ -535,7 +551,8 @@ static int dispatch(mt_query *q, const char *line, char *out, size_t size)
     } queries[] = {{"mode", query_mode},     {"at", query_at},         {"eval", query_eval},
                    {"sample", query_sample}, {"rho", query_rho},       {"bssrdf", query_bssrdf},
                    {"shading", query_shading}, {"texture", query_texture}, {"version", query_version},
-                   {"conventions", query_conventions}, {"evals", query_evals}, {"samples", query_samples}};
+                   {"conventions", query_conventions}, {"evals", query_evals}, {"samples", query_samples},
+                   {"numbers", query_numbers}};
     const char *s = line;
     size_t len = 0, i;
     while (isspace((unsigned char)*s)) s++;

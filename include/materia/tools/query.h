@@ -15,7 +15,8 @@
  *   shading   -> nx ny nz dpdux dpduy dpduz dpdvx dpdvy dpdvz (after bump)
  *   texture "name"                                 -> value | r g b
  *   version      -> protocol <N> materia <version> precision float|double
- *   conventions  -> transport importance|radiance sample-numbers 3 batch 256
+ *   conventions  -> transport importance|radiance sample-numbers 3 batch 256 numbers hex
+ *   numbers hex|decimal  -> ok (the form of eval/sample/evals/samples answers)
  *   evals wox woy woz wix wiy wiz [wix wiy wiz]...  -> 4 numbers per wi
  *   samples wox woy woz uc u1 u2 [uc u1 u2]...      -> 8 numbers per triple
  * A bad line is answered "error <message>" and the session goes on. A
