@@ -158,7 +158,8 @@ int main(int argc, char **argv)
                  "[1 1 1]\\neval 0 0 1 0 0 1\\n' | %s/materia-plugin-host %s/lambert_plugin.so 2>&1",
                  bin, plugins);
         t_run_output(cmd, &out);
-        verdict(out && !strcmp(out, "protocol 3 lambert_plugin 1.0 precision double\ntransport importance sample-numbers 3 batch 256\n"
+        verdict(out && !strcmp(out, "protocol 3 lambert_plugin 1.0 precision double\n"
+                                   "transport importance sample-numbers 3 batch 256 numbers hex\n"
                                    "ok\nerror unsupported: material \"plastic\": only matte\nok\n"
                                    "0.31830988618379069 0.31830988618379069 0.31830988618379069 0.31830988618379069\n"),
                 "the plugin host speaks the protocol", cmd, out);

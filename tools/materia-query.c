@@ -170,6 +170,7 @@ int main(int argc, char **argv)
         return 1;
     }
     mt_query_set_warning(q, warn, NULL);
+    mt_query_announce_fast(q, 1); /* batched lines, hexadecimal numbers (docs/PROTOCOL.md) */
     if (radiance) mt_query_set_options(q, MT_OPT_RADIANCE_TRANSMISSION);
     setvbuf(stdout, NULL, _IOFBF, 1 << 16);
     for (;;) {

@@ -45,6 +45,7 @@ struct mt_query {
     size_t pending_len;
     int line_no, pending_line;
     int hex;          /* "numbers hex": answers in C99 hexadecimal floats */
+    int fast;         /* conventions announce batch and numbers hex (mt_query_announce_fast) */
     mt_warning_fn warn; /* warnings: unused parameters, redefinitions */
     void *warn_ctx;
 };
@@ -55,6 +56,8 @@ void mt_query_set_options(mt_query *q, mt_mode options)
     mt_state_set_mode(q->state, q->mode | q->options);
     q->dirty = 1;
 }
+
+void mt_query_announce_fast(mt_query *q, int on) { q->fast = on != 0; }
 
 void mt_query_set_warning(mt_query *q, mt_warning_fn warn, void *ctx)
 {
@@ -510,13 +513,15 @@ static int query_mode(mt_query *q, const char *args, char *out, size_t size)
 
 /* The conventions of its answers (docs/PROTOCOL.md): pbrt-v2's BTDF values
  * (importance) unless the session's radiance-transmission option is on,
- * pbrt-v2's three random numbers, the batched queries (evals, samples)
- * of up to MT_QUERY_BATCH triples a line, and hexadecimal numbers. */
+ * pbrt-v2's three random numbers, and when the program serving the session
+ * asked for it (mt_query_announce_fast) the batched queries (evals,
+ * samples) of up to MT_QUERY_BATCH triples a line and hexadecimal numbers. */
 static int query_conventions(mt_query *q, const char *args, char *out, size_t size)
 {
     if (!only_space(args)) return fail_msg(out, size, "conventions: takes no arguments");
-    return answer(out, size, "transport %s sample-numbers 3 batch %d numbers hex",
-                  (q->options & MT_OPT_RADIANCE_TRANSMISSION) ? "radiance" : "importance", MT_QUERY_BATCH);
+    return answer(out, size, "transport %s sample-numbers 3%s",
+                  (q->options & MT_OPT_RADIANCE_TRANSMISSION) ? "radiance" : "importance",
+                  q->fast ? " batch " MT_QUERY_BATCH_TEXT " numbers hex" : "");
 }
 
 /* "numbers hex|decimal" (protocol 3): the form of the numbers of eval,

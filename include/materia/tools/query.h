@@ -15,7 +15,8 @@
  *   shading   -> nx ny nz dpdux dpduy dpduz dpdvx dpdvy dpdvz (after bump)
  *   texture "name"                                 -> value | r g b
  *   version      -> protocol <N> materia <version> precision float|double
- *   conventions  -> transport importance|radiance sample-numbers 3 batch 256 numbers hex
+ *   conventions  -> transport importance|radiance sample-numbers 3
+ *                   [batch 256 numbers hex] (mt_query_announce_fast)
  *   numbers hex|decimal  -> ok (the form of eval/sample/evals/samples answers)
  *   evals wox woy woz wix wiy wiz [wix wiy wiz]...  -> 4 numbers per wi
  *   samples wox woy woz uc u1 u2 [uc u1 u2]...      -> 8 numbers per triple
@@ -47,6 +48,7 @@ extern "C" {
  * answer of any line (in double, 8 x 256 numbers of up to 25 bytes). An
  * answer that does not fit a smaller buffer is an error answer. */
 #define MT_QUERY_BATCH 256
+#define MT_QUERY_BATCH_TEXT "256"
 #define MT_QUERY_ANSWER_SIZE 65536
 
 typedef struct mt_query mt_query;
@@ -64,6 +66,15 @@ MT_API void mt_query_destroy(mt_query *q);
  * start of a statement that continues on the next line. A bad query is
  * answered "error <message>": this never fails otherwise. */
 MT_API int mt_query_line(mt_query *q, const char *line, char *out, size_t size);
+
+/* Whether the "conventions" answer announces protocol 3's fast form,
+ * "batch 256 numbers hex" (on: 1; default 0, off). The session answers
+ * evals, samples and numbers lines either way; the announcement is what
+ * makes a client (materia-conformance --impl) send them, so it is the
+ * serving program's to make: materia-query does. A program that passes
+ * lines to a session and rewrites some of its answers (a test's wrong
+ * implementation, a wrapper) leaves it off unless it rewrites those too. */
+MT_API void mt_query_announce_fast(mt_query *q, int on);
 
 /* Where the session's warnings go (NULL: nowhere): the parameters a
  * Texture, Material or MakeNamedMaterial did not use (a misspelt name, a
