@@ -1,15 +1,21 @@
 /*
- * The power of the chi-square against a smooth sampler/pdf mismatch
+ * The power of the suite's tests against a smooth sampler/pdf mismatch
  * (power.h). A sampled density q = p (1 + eps g), g of mean 0 under p and
  * constant over each cell's row of cos theta_i, moves the expected count of
  * cell c from n p_c to n p_c (1 + eps g_c), so Pearson's statistic over the
  * cells is a non-central chi-square of non-centrality
  * lambda = n eps^2 sum_c p_c g_c^2 (Cochran 1952; the classical result for
  * local alternatives). Its power at level alpha is the upper tail of that
- * distribution beyond the central quantile. A configuration is caught when
- * any of its directions' tests fails: 1 - prod_w (1 - power_w).
+ * distribution beyond the central quantile. The mean of |cos theta_i| over
+ * the same rows is one linear contrast of those counts: a normal statistic
+ * shifted by the projection of the mismatch on it, a z test of one degree of
+ * freedom, which needs fewer samples wherever the mismatch lies mostly along
+ * |cos theta_i| (the critical value of a chi-square of 400 degrees of
+ * freedom is far above that of one). A configuration is caught when any of
+ * its directions' tests fails: 1 - prod_w (1 - power_w).
  */
 #include <math.h>
+#include <string.h>
 #include "power.h"
 
 double cf_chi2_upper_quantile(double alpha, double dof)
@@ -48,68 +54,89 @@ double cf_ncchi2_sf(double crit, double dof, double lambda)
     return fmin(1, sum);
 }
 
-double cf_power_shape(const cf_layout *l, const double *pdfc)
+
+const char *const cf_power_test_name[CF_PW_NTEST] = {"chi2", "mean cos"};
+
+double cf_power_row_h(const cf_layout *l, int r)
 {
-    double total = 0, below = 0, v = 0;
-    int r, c;
-    for (c = 0; c < l->ncell; ++c) total += pdfc[c] > 0 ? pdfc[c] : 0;
-    if (!(total > 0)) return 0;
+    double a = fabs(l->z[r]), b = fabs(l->z[r + 1]);
+    return l->z[r] < 0 && l->z[r + 1] > 0 ? (a * a + b * b) / (2 * (a + b)) : 0.5 * (a + b);
+}
+
+int cf_layout_row(const cf_layout *l, int c)
+{
+    int lo = 0, hi = l->nrow - 1;
+    while (lo < hi) {
+        int mid = (lo + hi + 1) / 2;
+        if (l->first[mid] <= c)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+void cf_power_shapes(const cf_layout *l, const double *prow, double v[CF_PW_NTEST][CF_PW_NREF])
+{
+    double total = 0, below = 0, m = 0, chi = 0, var = 0, cov = 0;
+    int r;
+    memset(v, 0, sizeof(double) * CF_PW_NTEST * CF_PW_NREF);
     for (r = 0; r < l->nrow; ++r) {
-        double pr = 0, g;
-        for (c = l->first[r]; c < l->first[r + 1]; ++c) pr += pdfc[c] > 0 ? pdfc[c] : 0;
+        double pr = prow[r] > 0 ? prow[r] : 0;
+        total += pr;
+        m += pr * cf_power_row_h(l, r);
+    }
+    if (!(total > 0)) return;
+    m /= total;
+    for (r = 0; r < l->nrow; ++r) {
+        double pr = prow[r] > 0 ? prow[r] : 0, h = cf_power_row_h(l, r) - m;
         /* the mean of 2 F - 1 over the row: F runs from below / total to
          * (below + pr) / total across it */
-        g = (2 * below + pr) / total - 1;
-        v += pr * g * g;
+        double g = (2 * below + pr) / total - 1;
+        chi += pr * g * g;
+        var += pr * h * h;
+        cov += pr * h * g;
         below += pr;
     }
-    return v;
+    v[CF_PW_CHI2][CF_PW_WARP] = chi;
+    v[CF_PW_CHI2][CF_PW_SHAPE] = var;
+    v[CF_PW_MEAN][CF_PW_WARP] = var > 0 ? cov * cov / var : 0;
+    v[CF_PW_MEAN][CF_PW_SHAPE] = var;
 }
 
-double cf_power_shape_cos(const cf_layout *l, const double *pdfc)
+/* The probability that a two-sided z test at alpha rejects when its
+ * statistic is shifted by sqrt(lambda) standard deviations. */
+static double z_power(double alpha, double lambda)
 {
-    double total = 0, m = 0, v = 0;
-    int r, c, pass;
-    for (pass = 0; pass < 2; ++pass)
-        for (r = 0; r < l->nrow; ++r) {
-            double pr = 0, a = fabs(l->z[r]), b = fabs(l->z[r + 1]);
-            /* the mean of |z| over the row, at its middle (a row that
-             * crosses the horizon: its two halves) */
-            double mid = l->z[r] < 0 && l->z[r + 1] > 0 ? (a * a + b * b) / (2 * (a + b)) : 0.5 * (a + b);
-            for (c = l->first[r]; c < l->first[r + 1]; ++c) pr += pdfc[c] > 0 ? pdfc[c] : 0;
-            if (!pass) {
-                total += pr;
-                m += pr * mid;
-            } else {
-                v += pr * (mid - m) * (mid - m);
-            }
-            if (!pass && r == l->nrow - 1 && total > 0) m /= total;
-        }
-    return total > 0 ? v : 0;
+    double z = cf_normal_two_sided_z(alpha), d = sqrt(lambda > 0 ? lambda : 0);
+    return 0.5 * erfc((z - d) / sqrt(2.0)) + 0.5 * erfc((z + d) / sqrt(2.0));
 }
 
-/* The probability of catching eps. */
-static double catch_prob(double eps, int nwo, const long *n, const long *dof, const double *v, double alpha)
+double cf_power_catch(int test, int ref, double eps, int nwo, const cf_power_dir *d, double alpha)
 {
     double miss = 1;
     int w;
     for (w = 0; w < nwo; ++w) {
-        double crit;
-        if (dof[w] < 1 || !(v[w] > 0) || n[w] < 1) continue;
-        crit = cf_chi2_upper_quantile(alpha, (double)dof[w]);
-        miss *= 1 - cf_ncchi2_sf(crit, (double)dof[w], (double)n[w] * eps * eps * v[w]);
+        double lambda = (double)d[w].n * eps * eps * d[w].v[test][ref];
+        if (!(d[w].v[test][ref] > 0) || d[w].n < 1) continue;
+        if (test == CF_PW_CHI2) {
+            if (d[w].dof < 1) continue;
+            miss *= 1 - cf_ncchi2_sf(cf_chi2_upper_quantile(alpha, (double)d[w].dof), (double)d[w].dof, lambda);
+        } else {
+            miss *= 1 - z_power(alpha, lambda);
+        }
     }
     return 1 - miss;
 }
 
-double cf_power_min_eps(int nwo, const long *n, const long *dof, const double *v, double alpha, double want)
+double cf_power_min_eps(int test, int ref, int nwo, const cf_power_dir *d, double alpha, double want)
 {
     double lo = 0, hi = 1;
     int i;
-    if (catch_prob(hi, nwo, n, dof, v, alpha) < want) return 1;
+    if (cf_power_catch(test, ref, hi, nwo, d, alpha) < want) return 1;
     for (i = 0; i < 50; ++i) {
         double mid = 0.5 * (lo + hi);
-        if (catch_prob(mid, nwo, n, dof, v, alpha) >= want)
+        if (cf_power_catch(test, ref, mid, nwo, d, alpha) >= want)
             hi = mid;
         else
             lo = mid;
@@ -117,25 +144,55 @@ double cf_power_min_eps(int nwo, const long *n, const long *dof, const double *v
     return hi;
 }
 
-long cf_power_samples(double eps, int nwo, int ncell, int nz, double alpha, double want, long max)
+/* The samples per direction with which test catches ref's eps with
+ * probability want, capped at max. */
+static long samples_for(int test, int ref, double eps, int nwo, const cf_power_dir *d0, double alpha, double want,
+                        long max)
 {
-    long n[CF_MAX_WO], dof[CF_MAX_WO], lo = 1, hi = max;
-    double v[CF_MAX_WO];
+    cf_power_dir d[CF_MAX_WO];
+    long lo = 1, hi = max;
     int w;
     if (nwo > CF_MAX_WO) nwo = CF_MAX_WO;
     for (w = 0; w < nwo; ++w) {
-        dof[w] = ncell - 1;
-        v[w] = (1 - 1.0 / ((double)nz * nz)) / 3;
+        d[w] = d0[w];
+        d[w].n = hi;
     }
-    for (w = 0; w < nwo; ++w) n[w] = hi;
-    if (catch_prob(eps, nwo, n, dof, v, alpha) < want) return max;
+    if (cf_power_catch(test, ref, eps, nwo, d, alpha) < want) return max;
     while (hi - lo > 1 && hi - lo > lo / 1000) {
         long mid = lo + (hi - lo) / 2;
-        for (w = 0; w < nwo; ++w) n[w] = mid;
-        if (catch_prob(eps, nwo, n, dof, v, alpha) >= want)
+        for (w = 0; w < nwo; ++w) d[w].n = mid;
+        if (cf_power_catch(test, ref, eps, nwo, d, alpha) >= want)
             hi = mid;
         else
             lo = mid;
     }
     return hi;
+}
+
+long cf_power_samples_for(double eps, int nwo, const cf_power_dir *d, double alpha, double want, long max)
+{
+    long need = 1;
+    int ref, test;
+    for (ref = 0; ref < CF_PW_NREF; ++ref) {
+        long best = max;
+        for (test = 0; test < CF_PW_NTEST; ++test) {
+            long n = samples_for(test, ref, eps, nwo, d, alpha, want, max);
+            if (n < best) best = n;
+        }
+        if (best > need) need = best;
+    }
+    return need;
+}
+
+long cf_power_samples(double eps, int nwo, int ncell, int nz, double alpha, double want, long max)
+{
+    cf_power_dir d[CF_MAX_WO];
+    int w;
+    if (nwo > CF_MAX_WO) nwo = CF_MAX_WO;
+    memset(d, 0, sizeof d);
+    for (w = 0; w < nwo; ++w) {
+        d[w].dof = ncell - 1;
+        d[w].v[CF_PW_CHI2][CF_PW_WARP] = (1 - 1.0 / ((double)nz * nz)) / 3;
+    }
+    return samples_for(CF_PW_CHI2, CF_PW_WARP, eps, nwo, d, alpha, want, max);
 }
