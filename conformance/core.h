@@ -252,6 +252,7 @@ int cf_layout_copy(cf_layout *dst, const cf_layout *src);
 void cf_layout_free(cf_layout *l);
 int cf_layout_cell(const cf_layout *l, double x, double y, double z);
 void cf_layout_bounds(const cf_layout *l, int c, double *p0, double *p1, double *z0, double *z1);
+int cf_layout_row(const cf_layout *l, int c); /* the row holding cell c */
 
 /* ---- a run ----------------------------------------------------------------------- */
 typedef struct cf_run {
@@ -297,8 +298,8 @@ typedef struct cf_outcome {
     double eta;                 /* the relative index found (Snell or reciprocity), or 0 */
     /* the tests of each direction, for their power (power.h): samples,
      * the chi-square's degrees of freedom, and v[test][reference] over its
-     * cells (chi2, mean cos; the sampler warp, the pdf shape) */
-    long pw_n[CF_MAX_WO], pw_dof[CF_MAX_WO];
+     * cells (chi2, mean wi; the sampler warp, the pdf shape) */
+    long pw_n[CF_MAX_WO], pw_dof[CF_MAX_WO], pw_mdof[CF_MAX_WO]; /* and the mean test's */
     double pw_v[CF_MAX_WO][2][2];
 } cf_outcome;
 

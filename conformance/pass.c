@@ -303,15 +303,16 @@ static long power_samples(const cf_ctx *x)
     for (w = 0; w < x->nwo && w < CF_MAX_WO; ++w) {
         const cf_wo_data *d = x->w + w;
         const cf_layout *l = &x->out->layout[w];
-        double *prow;
+        double *pc;
         long i;
-        if (!l->ncell || !d->npilot_drawn || !(prow = calloc((size_t)l->nrow, sizeof *prow))) continue;
+        int mdof;
+        if (!l->ncell || !d->npilot_drawn || !(pc = calloc((size_t)l->ncell, sizeof *pc))) continue;
         for (i = 0; i < d->npilot; ++i)
-            prow[cf_layout_row(l, cf_layout_cell(l, d->pilot[i].x, d->pilot[i].y, d->pilot[i].z))] +=
-                1.0 / (double)d->npilot_drawn;
+            pc[cf_layout_cell(l, d->pilot[i].x, d->pilot[i].y, d->pilot[i].z)] += 1.0 / (double)d->npilot_drawn;
         pd[nw].dof = l->ncell - 1;
-        cf_power_shapes(l, prow, pd[nw++].v);
-        free(prow);
+        cf_power_shapes(l, pc, pd[nw].v, &mdof);
+        pd[nw++].mdof = mdof;
+        free(pc);
     }
     return cf_power_samples_for(run->power, nw, pd, run->cfg.alpha_test, 0.95, run->power_max);
 }
@@ -352,7 +353,11 @@ static int wo_main(cf_ctx *x, cf_wo_data *d, int slot)
     }
     for (i = 0; i < nw; ++i) wos[i] = d->wo;
     cf_sample_stream(&rng, x->c->name, d->index, 0);
+    /* checks that need only the first directions sampled (the pairs'; run
+     * alone, --check): small chunks, until they are there */
+    if (!(x->stages & (ST_IDENTITY | ST_CELLS | ST_PROBES)) && chunk > 1024) chunk = 1024;
     for (done = 0; done < n; done += m) {
+        if (!(x->stages & (ST_IDENTITY | ST_CELLS | ST_PROBES)) && d->ndirs >= CF_KEEP_DIRS) break;
         m = n - done < chunk ? n - done : chunk;
         cf_sample_next(&rng, run->sample_numbers, m, u);
         if ((r = t->ops->sample(t, (int)m, wos, (const float(*)[3])u, s))) goto out;
@@ -443,8 +448,8 @@ typedef struct acc {
         int hard, wo;
         char where[672]; /* wod[200], cells[420] and the count (core.h cf_result.where the same) */
     } chi[2];
-    double worst_int, worst_mc, worst_gap, worst_excess, rho_lo, rho_hi, worst_mean;
-    int int_wo, mc_wo, rho_wo, gap_bad, other, mean_wo;
+    double worst_int, worst_mc, worst_gap, worst_excess, rho_lo, rho_hi, mean_p;
+    int int_wo, mc_wo, rho_wo, gap_bad, other, mean_wo, mean_dof;
     char int_what[160], mc_what[200], rho_what[160], gap_what[160], mean_what[160];
 } acc;
 
@@ -527,16 +532,11 @@ static void chi2_of(cf_ctx *x, acc *a, int which, cf_wo_data *d, const cf_layout
     cf_chi2_counts(l->ncell, counts, pdfc, d->n, d->ndirs, integral, &c2);
     plot(x, which, d, l, counts, pdfc, &c2);
     if (which == 0 && d->index < CF_MAX_WO) { /* its power (power.c) */
-        double *prow = calloc((size_t)l->nrow, sizeof *prow);
-        int c;
+        int mdof;
         x->out->pw_n[d->index] = d->n;
         x->out->pw_dof[d->index] = c2.dof;
-        memset(x->out->pw_v[d->index], 0, sizeof x->out->pw_v[d->index]);
-        if (prow) {
-            for (c = 0; c < l->ncell; ++c) prow[cf_layout_row(l, c)] += pdfc[c];
-            cf_power_shapes(l, prow, x->out->pw_v[d->index]);
-            free(prow);
-        }
+        cf_power_shapes(l, pdfc, x->out->pw_v[d->index], &mdof);
+        x->out->pw_mdof[d->index] = mdof;
     }
     if (c2.hard) a->chi[which].hard = 1;
     if (c2.p < a->chi[which].min_p) {
@@ -550,46 +550,68 @@ static void chi2_of(cf_ctx *x, acc *a, int which, cf_wo_data *d, const cf_layout
     }
 }
 
-/* The mean of |cos theta_i| over its non-delta samples against the mean
- * its pdf gives, each sample counted at its row's |cos theta_i|
- * (cf_power_row_h): a linear contrast of the chi-square's counts, whose
- * expectation and variance under its own pdf come from the same cubature,
- * so nothing but the samples is random. Given the N samples in cells, they
- * are N draws of the pdf normalized over the cells: the mean is within z
- * sd / sqrt(N) of the pdf's, sd from the pdf too (exact if the pdf is the
- * sampler's), plus the cubature's error (its total error over the cells
- * bounds the mean's, |h - m| <= 1) and the rounding allowance. */
+/* The mean of its sampled directions against the mean its pdf gives: each
+ * non-delta sample counted at its cell's centre, x, y, z and its row's
+ * |z| (cf_mean_funcs), so the statistic is a few linear contrasts of the
+ * chi-square's counts, whose expectations and covariance under its own pdf
+ * come from the same cubature: nothing but the samples is random. Given
+ * the N samples in cells, they are N draws of the pdf normalized over the
+ * cells; in the functions' combinations orthonormal under it (as many as
+ * are independent: 3 above the surface, where z = |z|), N times the
+ * squared deviations of the means is a chi-square of that many degrees of
+ * freedom. The cubature's error (its total over the cells, relative to
+ * the pdf's integral, bounds each mean's error times the combination's
+ * coefficients) and the rounding allowance are taken off each deviation
+ * first. */
 static void mean_of(cf_ctx *x, acc *a, const cf_wo_data *d, const cf_layout *l, const long *counts, const double *pdfc,
                     double cerr)
 {
     cf_result *res = &x->out->res[CK_MEAN];
-    double p = 0, sh = 0, sh2 = 0, so = 0, mu, var, mean, se, sys, dev;
+    double p = 0, so[CF_MEAN_DIM] = {0, 0, 0, 0}, h[CF_MEAN_DIM], t = 0, pv, worst = 0;
+    static const char *const fname[CF_MEAN_DIM] = {"x", "y", "z", "|z|"};
+    static const char *const mean_what[CF_MEAN_DIM] = {
+        "the mean x of its samples minus its pdf's at cos %.3g", "the mean y of its samples minus its pdf's at cos %.3g",
+        "the mean z of its samples minus its pdf's at cos %.3g", "the mean |z| of its samples minus its pdf's at cos %.3g"};
+    cf_mean_basis b;
     long nd = 0;
-    int c;
+    int c, j, k, wj = 3;
     for (c = 0; c < l->ncell; ++c) {
-        double h = cf_power_row_h(l, cf_layout_row(l, c)), pc = pdfc[c] > 0 ? pdfc[c] : 0;
-        p += pc;
-        sh += pc * h;
-        sh2 += pc * h * h;
-        so += (double)counts[c] * h;
+        p += pdfc[c] > 0 ? pdfc[c] : 0;
+        if (!counts[c]) continue;
+        cf_mean_funcs(l, c, h);
+        for (j = 0; j < CF_MEAN_DIM; ++j) so[j] += (double)counts[c] * h[j];
         nd += counts[c];
     }
-    if (!(p > 0) || nd < 1) return; /* nothing to set against (chi2 says why) */
-    mu = sh / p;
-    var = fmax(sh2 / p - mu * mu, 0);
-    mean = so / (double)nd;
-    se = sqrt(var / (double)nd);
-    sys = cerr / p + x->allow;
-    dev = fabs(mean - mu) / (x->z * se + sys);
-    cf_measure_add(res, mean - mu, se, sys, d->wo.z, "the mean |cos theta_i| of its samples minus its pdf's at cos %.3g");
-    if (dev > a->worst_mean || a->mean_wo < 0) {
+    if (!(p > 0) || nd < 1 || !cf_mean_basis_of(l, pdfc, &b)) return; /* nothing to set against (chi2 says why) */
+    for (j = 0; j < CF_MEAN_DIM; ++j) so[j] /= (double)nd;
+    for (k = 0; k < b.rank; ++k) {
+        double e = 0, sys = 0;
+        for (j = 0; j < CF_MEAN_DIM; ++j) {
+            e += b.a[k][j] * (so[j] - b.mu[j]);
+            sys += fabs(b.a[k][j]) * (2 * cerr / p + x->allow);
+        }
+        e = fmax(0, fabs(e) - sys);
+        t += (double)nd * e * e;
+    }
+    pv = cf_chi2_pvalue(t, b.rank);
+    for (j = 0; j < CF_MEAN_DIM; ++j) {
+        double dv = so[j] - b.mu[j];
+        cf_measure_add(res, dv, sqrt(b.var[j] / (double)nd), 2 * cerr / p + x->allow, d->wo.z, mean_what[j]);
+        if (b.var[j] > 0 && fabs(dv) / sqrt(b.var[j]) > worst) {
+            worst = fabs(dv) / sqrt(b.var[j]);
+            wj = j;
+        }
+    }
+    if (pv < a->mean_p || a->mean_wo < 0) {
         char wod[200];
-        a->worst_mean = fmax(a->worst_mean, dev);
+        a->mean_p = fmin(a->mean_p, pv);
         a->mean_wo = d->index;
-        snprintf(a->mean_what, sizeof a->mean_what, "%.6f vs %.6f +- %.2g at cos %.4g", mean, mu, se, d->wo.z);
+        a->mean_dof = b.rank;
+        snprintf(a->mean_what, sizeof a->mean_what, "%s %.6f vs %.6f at cos %.4g", fname[wj], so[wj], b.mu[wj], d->wo.z);
         cf_describe_wo(d->wo, wod, sizeof wod);
-        snprintf(res->where, sizeof res->where, "%s: the mean |cos theta_i| of its %ld samples in cells %.6f, its "
-                 "pdf's %.6f (sd of the mean %.2g, tolerance %.2g)", wod, nd, mean, mu, se, x->z * se + sys);
+        snprintf(res->where, sizeof res->where, "%s: the means of its %ld samples in cells: x %.6f y %.6f z %.6f |z| %.6f; "
+                 "its pdf's: x %.6f y %.6f z %.6f |z| %.6f (%d dof, chi2 %.3g)", wod, nd, so[0], so[1], so[2], so[3],
+                 b.mu[0], b.mu[1], b.mu[2], b.mu[3], b.rank, t);
     }
 }
 
@@ -781,7 +803,8 @@ static void finish(cf_ctx *x, acc *a)
             snprintf(r->where, sizeof r->where, "%s", a->chi[k].where);
         }
         if (a->mean_wo >= 0) {
-            cf_set(&res[CK_MEAN], a->worst_mean <= 1, "dev/tol <= 1", "dev/tol %.2f (%s)", a->worst_mean, a->mean_what);
+            cf_set(&res[CK_MEAN], a->mean_p >= run->cfg.alpha_test, b, "min p %.3g (%d dof; %s)", a->mean_p, a->mean_dof,
+                   a->mean_what);
             res[CK_MEAN].wo = a->mean_wo;
         } else {
             cf_set(&res[CK_MEAN], 1, "dev/tol <= 1", "no sample in a cell");
@@ -842,6 +865,7 @@ int cf_run_case(const cf_run *run, const cf_case *c, cf_impl *test, cf_impl *ref
     a.rho_lo = 1e300;
     a.rho_hi = -1e300;
     a.int_wo = a.mc_wo = a.rho_wo = a.mean_wo = -1;
+    a.mean_p = 2;
     x.run = run;
     x.c = c;
     x.test = test;

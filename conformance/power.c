@@ -15,6 +15,7 @@
  * its directions' tests fails: 1 - prod_w (1 - power_w).
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include "power.h"
 
@@ -55,7 +56,7 @@ double cf_ncchi2_sf(double crit, double dof, double lambda)
 }
 
 
-const char *const cf_power_test_name[CF_PW_NTEST] = {"chi2", "mean cos"};
+const char *const cf_power_test_name[CF_PW_NTEST] = {"chi2", "mean wi"};
 
 double cf_power_row_h(const cf_layout *l, int r)
 {
@@ -63,53 +64,112 @@ double cf_power_row_h(const cf_layout *l, int r)
     return l->z[r] < 0 && l->z[r + 1] > 0 ? (a * a + b * b) / (2 * (a + b)) : 0.5 * (a + b);
 }
 
-int cf_layout_row(const cf_layout *l, int c)
+void cf_mean_funcs(const cf_layout *l, int c, double h[CF_MEAN_DIM])
 {
-    int lo = 0, hi = l->nrow - 1;
-    while (lo < hi) {
-        int mid = (lo + hi + 1) / 2;
-        if (l->first[mid] <= c)
-            lo = mid;
-        else
-            hi = mid - 1;
-    }
-    return lo;
+    double p0, p1, z0, z1, z, s, phi;
+    cf_layout_bounds(l, c, &p0, &p1, &z0, &z1);
+    z = 0.5 * (z0 + z1);
+    s = sqrt(fmax(0, 1 - z * z));
+    phi = 0.5 * (p0 + p1);
+    h[0] = s * cos(phi);
+    h[1] = s * sin(phi);
+    h[2] = z;
+    h[3] = cf_power_row_h(l, cf_layout_row(l, c));
 }
 
-void cf_power_shapes(const cf_layout *l, const double *prow, double v[CF_PW_NTEST][CF_PW_NREF])
+int cf_mean_basis_of(const cf_layout *l, const double *pc, cf_mean_basis *b)
 {
-    double total = 0, below = 0, m = 0, chi = 0, var = 0, cov = 0;
-    int r;
-    memset(v, 0, sizeof(double) * CF_PW_NTEST * CF_PW_NREF);
-    for (r = 0; r < l->nrow; ++r) {
-        double pr = prow[r] > 0 ? prow[r] : 0;
-        total += pr;
-        m += pr * cf_power_row_h(l, r);
+    double total = 0, S[CF_MEAN_DIM][CF_MEAN_DIM], h[CF_MEAN_DIM];
+    int c, j, k, i;
+    memset(b, 0, sizeof *b);
+    memset(S, 0, sizeof S);
+    for (c = 0; c < l->ncell; ++c) {
+        double p = pc[c] > 0 ? pc[c] : 0;
+        if (!(p > 0)) continue;
+        cf_mean_funcs(l, c, h);
+        total += p;
+        for (j = 0; j < CF_MEAN_DIM; ++j) {
+            b->mu[j] += p * h[j];
+            for (k = 0; k < CF_MEAN_DIM; ++k) S[j][k] += p * h[j] * h[k];
+        }
     }
-    if (!(total > 0)) return;
+    if (!(total > 0)) return 0;
+    for (j = 0; j < CF_MEAN_DIM; ++j) b->mu[j] /= total;
+    for (j = 0; j < CF_MEAN_DIM; ++j)
+        for (k = 0; k < CF_MEAN_DIM; ++k) S[j][k] = S[j][k] / total - b->mu[j] * b->mu[k];
+    for (j = 0; j < CF_MEAN_DIM; ++j) b->var[j] = fmax(S[j][j], 0);
+    /* Gram-Schmidt in the covariance's inner product: combinations of the
+     * centred functions, orthonormal under the pdf; a function that the
+     * others already give (z = |z| above the surface) adds no dimension */
+    for (j = 0; j < CF_MEAN_DIM; ++j) {
+        double v[CF_MEAN_DIM] = {0, 0, 0, 0}, nn = 0;
+        v[j] = 1;
+        for (k = 0; k < b->rank; ++k) {
+            double dot = 0;
+            for (i = 0; i < CF_MEAN_DIM; ++i) dot += b->a[k][i] * S[i][j];
+            for (i = 0; i < CF_MEAN_DIM; ++i) v[i] -= dot * b->a[k][i];
+        }
+        for (i = 0; i < CF_MEAN_DIM; ++i)
+            for (k = 0; k < CF_MEAN_DIM; ++k) nn += v[i] * S[i][k] * v[k];
+        if (!(nn > 1e-9 * S[j][j]) || !(nn > 1e-14)) continue;
+        for (i = 0; i < CF_MEAN_DIM; ++i) b->a[b->rank][i] = v[i] / sqrt(nn);
+        b->rank++;
+    }
+    return b->rank;
+}
+
+void cf_power_shapes(const cf_layout *l, const double *pc, double v[CF_PW_NTEST][CF_PW_NREF], int *mdof)
+{
+    double total = 0, below = 0, m = 0, chi = 0, var = 0, proj[CF_PW_NREF][CF_MEAN_DIM], *g = NULL, h[CF_MEAN_DIM];
+    double *prow = calloc((size_t)(l->nrow > 0 ? l->nrow : 1), sizeof *prow);
+    cf_mean_basis b;
+    int r, c, k, j;
+    memset(v, 0, sizeof(double) * CF_PW_NTEST * CF_PW_NREF);
+    memset(proj, 0, sizeof proj);
+    *mdof = 0;
+    if (!prow || !(g = calloc((size_t)l->nrow, sizeof *g))) goto out;
+    for (c = 0; c < l->ncell; ++c) prow[cf_layout_row(l, c)] += pc[c] > 0 ? pc[c] : 0;
+    for (r = 0; r < l->nrow; ++r) {
+        total += prow[r];
+        m += prow[r] * cf_power_row_h(l, r);
+    }
+    if (!(total > 0)) goto out;
     m /= total;
     for (r = 0; r < l->nrow; ++r) {
-        double pr = prow[r] > 0 ? prow[r] : 0, h = cf_power_row_h(l, r) - m;
+        double hr = cf_power_row_h(l, r) - m;
         /* the mean of 2 F - 1 over the row: F runs from below / total to
          * (below + pr) / total across it */
-        double g = (2 * below + pr) / total - 1;
-        chi += pr * g * g;
-        var += pr * h * h;
-        cov += pr * h * g;
-        below += pr;
+        g[r] = (2 * below + prow[r]) / total - 1;
+        chi += prow[r] * g[r] * g[r];
+        var += prow[r] * hr * hr;
+        below += prow[r];
     }
     v[CF_PW_CHI2][CF_PW_WARP] = chi;
     v[CF_PW_CHI2][CF_PW_SHAPE] = var;
-    v[CF_PW_MEAN][CF_PW_WARP] = var > 0 ? cov * cov / var : 0;
-    v[CF_PW_MEAN][CF_PW_SHAPE] = var;
-}
-
-/* The probability that a two-sided z test at alpha rejects when its
- * statistic is shifted by sqrt(lambda) standard deviations. */
-static double z_power(double alpha, double lambda)
-{
-    double z = cf_normal_two_sided_z(alpha), d = sqrt(lambda > 0 ? lambda : 0);
-    return 0.5 * erfc((z - d) / sqrt(2.0)) + 0.5 * erfc((z + d) / sqrt(2.0));
+    /* the mean test: the mismatch's projection on its orthonormal
+     * functions, squared and summed (times the fraction in cells) */
+    *mdof = cf_mean_basis_of(l, pc, &b);
+    for (c = 0; c < l->ncell; ++c) {
+        double p = pc[c] > 0 ? pc[c] / total : 0, ref[CF_PW_NREF];
+        if (!(p > 0)) continue;
+        r = cf_layout_row(l, c);
+        ref[CF_PW_WARP] = g[r];
+        ref[CF_PW_SHAPE] = cf_power_row_h(l, r) - m;
+        cf_mean_funcs(l, c, h);
+        for (k = 0; k < b.rank; ++k) {
+            double e = 0;
+            for (j = 0; j < CF_MEAN_DIM; ++j) e += b.a[k][j] * (h[j] - b.mu[j]);
+            proj[CF_PW_WARP][k] += p * e * ref[CF_PW_WARP];
+            proj[CF_PW_SHAPE][k] += p * e * ref[CF_PW_SHAPE];
+        }
+    }
+    for (k = 0; k < b.rank; ++k) {
+        v[CF_PW_MEAN][CF_PW_WARP] += total * proj[CF_PW_WARP][k] * proj[CF_PW_WARP][k];
+        v[CF_PW_MEAN][CF_PW_SHAPE] += total * proj[CF_PW_SHAPE][k] * proj[CF_PW_SHAPE][k];
+    }
+out:
+    free(prow);
+    free(g);
 }
 
 double cf_power_catch(int test, int ref, double eps, int nwo, const cf_power_dir *d, double alpha)
@@ -118,13 +178,9 @@ double cf_power_catch(int test, int ref, double eps, int nwo, const cf_power_dir
     int w;
     for (w = 0; w < nwo; ++w) {
         double lambda = (double)d[w].n * eps * eps * d[w].v[test][ref];
-        if (!(d[w].v[test][ref] > 0) || d[w].n < 1) continue;
-        if (test == CF_PW_CHI2) {
-            if (d[w].dof < 1) continue;
-            miss *= 1 - cf_ncchi2_sf(cf_chi2_upper_quantile(alpha, (double)d[w].dof), (double)d[w].dof, lambda);
-        } else {
-            miss *= 1 - z_power(alpha, lambda);
-        }
+        long dof = test == CF_PW_CHI2 ? d[w].dof : d[w].mdof;
+        if (!(d[w].v[test][ref] > 0) || d[w].n < 1 || dof < 1) continue;
+        miss *= 1 - cf_ncchi2_sf(cf_chi2_upper_quantile(alpha, (double)dof), (double)dof, lambda);
     }
     return 1 - miss;
 }

@@ -17,10 +17,12 @@ double cf_ncchi2_sf(double crit, double dof, double lambda);
 double cf_chi2_upper_quantile(double alpha, double dof);
 
 /* Two tests see a smooth mismatch at each direction: the chi-square over
- * its cells (CF_PW_CHI2, dof degrees of freedom) and the mean of |cos
- * theta_i| over its rows (CF_PW_MEAN, one degree of freedom, two-sided);
- * two reference mismatches of relative size eps are what they are
- * measured against:
+ * its cells (CF_PW_CHI2, dof degrees of freedom) and the mean of its
+ * sampled directions (CF_PW_MEAN: the means of x, y, z and |z| of wi at
+ * the cells' centres against its pdf's, a chi-square of as many degrees of
+ * freedom as those functions are independent under the pdf, 3 for a
+ * reflection, 4 with transmission); two reference mismatches of relative
+ * size eps are what they are measured against:
  *
  *  CF_PW_WARP   the sampled density is p (1 + eps g), g = 2 F(z) - 1 with F
  *               the distribution of z = cos theta_i under p's non-delta part
@@ -29,30 +31,43 @@ double cf_chi2_upper_quantile(double alpha, double dof);
  *  CF_PW_SHAPE  the pdf is p (1 + eps (|cos theta_i| - m)), m the mean of
  *               |cos theta_i| under p; the samples follow p
  *
- * Each test's statistic is then (for small eps) non-central with
- * non-centrality n eps^2 v: v[test][ref] of a direction, from its rows of
- * cos theta_i (the layout's) and the probability of each row prow (the
- * non-delta part: it sums to the fraction of samples that land in a cell;
- * from the cubature of its pdf, or from its pilot's counts). The chi-square's
- * v is the sum over rows of P_r g_r^2 (g constant over a row: Cochran 1952);
- * the mean's is (sum P_r (h_r - m) g_r)^2 / sum P_r (h_r - m)^2, h_r the
- * row's |cos theta_i| (cf_power_row_h), the square of the projection of the
- * mismatch on the one direction the mean test looks along. */
+ * Each test's statistic is then (for small eps) a non-central chi-square
+ * of non-centrality n eps^2 v: v[test][ref] of a direction, from its cells
+ * and the probability pc of each (the non-delta part: it sums to the
+ * fraction of samples that land in a cell; from the cubature of its pdf,
+ * or from its pilot's counts). The chi-square's v is the sum over rows of
+ * P_r g_r^2 (g constant over a row: Cochran 1952); the mean test's is the
+ * squared length of the mismatch's projection on its functions
+ * (orthonormalized under the pdf): far fewer degrees of freedom see the
+ * part of a smooth mismatch that lies along them with far fewer samples. */
 enum { CF_PW_CHI2, CF_PW_MEAN, CF_PW_NTEST };
 enum { CF_PW_WARP, CF_PW_SHAPE, CF_PW_NREF };
 extern const char *const cf_power_test_name[CF_PW_NTEST];
 
-/* |cos theta_i| of row r, the value the mean test gives its samples: the
- * mean of |z| over the row (a row across the horizon: over its two halves) */
+/* |cos theta_i| of row r: the mean of |z| over the row (a row across the
+ * horizon: over its two halves) */
 double cf_power_row_h(const cf_layout *l, int r);
-/* The row of cell c. */
-int cf_layout_row(const cf_layout *l, int c);
-void cf_power_shapes(const cf_layout *l, const double *prow, double v[CF_PW_NTEST][CF_PW_NREF]);
+
+/* The mean test's functions at cell c, what each sample in it counts as:
+ * x, y, z of its centre (mid z, mid phi) and its row's |z|. */
+#define CF_MEAN_DIM 4
+void cf_mean_funcs(const cf_layout *l, int c, double h[CF_MEAN_DIM]);
+/* Their means under cell probabilities pc, and rank combinations of them,
+ * centred, orthonormal under pc (a[k] . (h - mu)): its rank. */
+typedef struct cf_mean_basis {
+    int rank;
+    double mu[CF_MEAN_DIM], var[CF_MEAN_DIM]; /* the functions' means and variances */
+    double a[CF_MEAN_DIM][CF_MEAN_DIM];
+} cf_mean_basis;
+int cf_mean_basis_of(const cf_layout *l, const double *pc, cf_mean_basis *b);
+
+/* The shapes of a direction, and the mean test's degrees of freedom. */
+void cf_power_shapes(const cf_layout *l, const double *pc, double v[CF_PW_NTEST][CF_PW_NREF], int *mdof);
 
 /* What a configuration's power is computed from: per direction, its samples
- * n, the chi-square's degrees of freedom and the shapes. */
+ * n, the chi-square's degrees of freedom, the mean test's, and the shapes. */
 typedef struct cf_power_dir {
-    long n, dof;
+    long n, dof, mdof;
     double v[CF_PW_NTEST][CF_PW_NREF];
 } cf_power_dir;
 
