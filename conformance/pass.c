@@ -807,7 +807,7 @@ static void finish(cf_ctx *x, acc *a)
                    a->mean_what);
             res[CK_MEAN].wo = a->mean_wo;
         } else {
-            cf_set(&res[CK_MEAN], 1, "dev/tol <= 1", "no sample in a cell");
+            cf_set(&res[CK_MEAN], 1, "p >= alpha", "not applicable: no sample in a cell (chi2 and pdf integral judge it)");
         }
         cf_set(&res[CK_INTEGRAL], a->worst_int <= 1, "dev/tol <= 1", "dev/tol %.2f (%s)", a->worst_int, a->int_what);
         res[CK_INTEGRAL].wo = a->int_wo;
