@@ -246,8 +246,10 @@ static int wo_pilot(cf_ctx *x, cf_wo_data *d, int slot)
     cf_v3 *wos = NULL;
     mt_rng rng;
     int r = 0;
-    if (!(x->stages & (ST_CELLS | ST_PROBES))) return 0;
-    np = (x->stages & ST_CELLS) ? (long)fmax((double)n / 4, (double)PILOT_PER_CELL * run->cfg.nphi * run->cfg.nz) : 0;
+    /* --power: the samples follow from the pilot, whatever is checked */
+    int pilot = (x->stages & ST_CELLS) || run->power > 0;
+    if (!pilot && !(x->stages & ST_PROBES)) return 0;
+    np = pilot ? (long)fmax((double)n / 4, (double)PILOT_PER_CELL * run->cfg.nphi * run->cfg.nz) : 0;
     if (np > n) np = n;
     /* --power: n is an estimate; the pilot need only lay the cells and
      * tell the shapes */
@@ -644,11 +646,13 @@ static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
     double *pdfc = NULL, *pdfm = NULL, tot[7], err[7], oth[7], oerr[7], dfwd[3], den[3];
     double cerr, ferr, integral, succ, se, tol;
     cf_regions rg;
-    int k, r = 0;
+    /* no cells where nothing was seen, nor for checks that need none (agree
+     * delta alone needs the probes, not the cubature) */
+    int k, r = 0, cells = x->density && (x->stages & ST_CELLS);
     memset(&rg, 0, sizeof rg);
     lobes_energy(x, d, dfwd, den);
-    if (!x->density) {
-        cf_layout_free(l); /* no cells where nothing was seen */
+    if (!cells) {
+        cf_layout_free(l);
         for (k = 0; k < 7; ++k) tot[k] = err[k] = 0;
     } else {
         /* the cells (wo_pilot) and the counts in them (wo_main) */
@@ -667,7 +671,7 @@ static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
     cerr = err[0];
     ferr = fmax(err[1], fmax(err[2], err[3]));
     succ = (double)d->ndirs / n;
-    if (x->density) {
+    if (cells) {
         cf_measure_hist(&res[CK_CHI2], counts, l->ncell, n - d->ndirs, d->wo.z);
         cf_measure_hist(&res[CK_CHI2_MATERIA], counts, l->ncell, n - d->ndirs, d->wo.z);
         /* chi2 and the pdf's integral */
@@ -709,7 +713,7 @@ static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
         double se_mc = sqrt(fmax(d->mc2[k] / n - m * m, 0) / n);
         double sys = ferr + x->allow * fabs(q) + (double)n * DBL_EPSILON * fabs(q) + 1e-12, dev;
         double gap_tol = ferr + x->allow * fabs(fq) + QUAD_SLACK, rho, slack, excess = 0, v = x->c->expect_rho;
-        if (x->density) {
+        if (cells) {
             if (gap > gap_tol && !(x->c->flags & CF_CASE_SHADING_GAP) && !a->gap_bad) {
                 a->gap_bad = 1;
                 snprintf(a->gap_what, sizeof a->gap_what, "f > 0 where pdf = 0: %.4g of rho unreachable at cos %.4g", gap,
@@ -841,8 +845,6 @@ static unsigned stages_of(const cf_run *run, const cf_impl *ref)
         if (cf_checks[k].kind == CF_AGREEMENT && !ref) continue;
         s |= cf_checks[k].stages;
     }
-    /* --power: the samples follow from the pilot, whatever is checked */
-    if (run->power > 0) s |= ST_CELLS;
     return s;
 }
 
