@@ -138,22 +138,32 @@ float cf_u_float(mt_rng *rng)
     return u < 1 ? u : 0x1.fffffep-1f;
 }
 
-void cf_sample_numbers(const char *name, int w, int pilot, int sample_numbers, long n, float (*u)[3])
+void cf_sample_stream(mt_rng *rng, const char *name, int w, int pilot)
 {
-    mt_rng rng;
-    long i;
     /* the main samples are stream 77 of the direction's seed (as before the
      * pilot existed); the pilot has a seed of its own: two streams of PCG32
      * from one seed are not independent (their states differ by a sequence
      * of the same generator), and the cells laid by the pilot must be
      * independent of the samples counted in them */
-    mt_rng_seed(&rng, cf_seed(name, pilot ? CF_PILOT_SEED + w : w), 77);
+    mt_rng_seed(rng, cf_seed(name, pilot ? CF_PILOT_SEED + w : w), 77);
+}
+
+void cf_sample_next(mt_rng *rng, int sample_numbers, long n, float (*u)[3])
+{
+    long i;
     for (i = 0; i < n; ++i) {
-        u[i][0] = cf_u_float(&rng);
-        u[i][1] = cf_u_float(&rng);
-        u[i][2] = cf_u_float(&rng);
+        u[i][0] = cf_u_float(rng);
+        u[i][1] = cf_u_float(rng);
+        u[i][2] = cf_u_float(rng);
         if (sample_numbers == 2) u[i][2] = 0.5f;
     }
+}
+
+void cf_sample_numbers(const char *name, int w, int pilot, int sample_numbers, long n, float (*u)[3])
+{
+    mt_rng rng;
+    cf_sample_stream(&rng, name, w, pilot);
+    cf_sample_next(&rng, sample_numbers, n, u);
 }
 
 int cf_case_from_config(cf_case *c, const cf_impl_config *k, const char *data)

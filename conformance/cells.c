@@ -189,16 +189,22 @@ int cf_layout_cell(const cf_layout *l, double x, double y, double z)
     return a;
 }
 
-void cf_layout_bounds(const cf_layout *l, int c, double *p0, double *p1, double *z0, double *z1)
+int cf_layout_row(const cf_layout *l, int c)
 {
     int lo = 0, hi = l->nrow - 1;
-    while (lo < hi) { /* the row holding cell c */
+    while (lo < hi) {
         int mid = (lo + hi + 1) / 2;
         if (l->first[mid] <= c)
             lo = mid;
         else
             hi = mid - 1;
     }
+    return lo;
+}
+
+void cf_layout_bounds(const cf_layout *l, int c, double *p0, double *p1, double *z0, double *z1)
+{
+    int lo = cf_layout_row(l, c);
     *z0 = l->z[lo];
     *z1 = l->z[lo + 1];
     *p0 = l->phi[c];

@@ -20,6 +20,13 @@ const cf_check_def cf_checks[CK_NCHECK] = {
     /* one chi-square (and one two-sample homogeneity test against materia's
      * histogram in pbrt-v2 mode) per direction */
     {"chi2", CF_PHYSICS, 1, 1, S | P | ST_CELLS, "its sampled directions follow its own pdf"},
+    /* one chi-square of 3 or 4 degrees of freedom per direction: the means
+     * of its sampled directions, linear contrasts of the chi-square's
+     * counts, few degrees of freedom where the chi-square has hundreds, so a
+     * smooth mismatch along them needs several times fewer samples
+     * (power.h); in pbrt-v2 mode, the four means compared with materia's */
+    {"mean wi", CF_PHYSICS, 1, 4, S | P | ST_CELLS,
+     "the mean of its sampled directions (x, y, z, |z|) equals the mean its own pdf gives, by the chi-square's cubature"},
     {"pdf integral", CF_PHYSICS, 1, 1, S | P | ST_CELLS,
      "the integral of its pdf equals the fraction of its samples that land in a cell"},
     {"chi2 materia", CF_AGREEMENT, 1, 1, S | P | ST_CELLS | ST_REFCELLS,

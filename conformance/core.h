@@ -165,7 +165,7 @@ const char *cf_unsupported(const char *answer);
 
 /* ---- the checks ---------------------------------------------------------------- */
 enum {
-    CK_IDENTITY, CK_CHI2, CK_INTEGRAL, CK_CHI2_MATERIA, CK_FURNACE_MC, CK_FURNACE, CK_AGREE_F, CK_AGREE_PDF,
+    CK_IDENTITY, CK_CHI2, CK_MEAN, CK_INTEGRAL, CK_CHI2_MATERIA, CK_FURNACE_MC, CK_FURNACE, CK_AGREE_F, CK_AGREE_PDF,
     CK_AGREE_DELTA, CK_RECIPROCITY, CK_HELMHOLTZ, CK_EXTREMES, CK_NCHECK
 };
 enum { CF_PHYSICS, CF_AGREEMENT };
@@ -254,6 +254,7 @@ int cf_layout_copy(cf_layout *dst, const cf_layout *src);
 void cf_layout_free(cf_layout *l);
 int cf_layout_cell(const cf_layout *l, double x, double y, double z);
 void cf_layout_bounds(const cf_layout *l, int c, double *p0, double *p1, double *z0, double *z1);
+int cf_layout_row(const cf_layout *l, int c); /* the row holding cell c */
 
 /* ---- a run ----------------------------------------------------------------------- */
 typedef struct cf_run {
@@ -267,6 +268,9 @@ typedef struct cf_run {
     int plots_all;
     long identity_samples; /* samples per direction whose f and pdf are set against eval */
     int sample_numbers;  /* the implementation's (3 or 2): with 2, u2 is held at 1/2 */
+    double power;        /* --power EPS: each configuration's samples per direction chosen
+                            from its pilot (power.h), cfg.samples only sizing the pilot; or 0 */
+    long power_max;      /* their most */
 } cf_run;
 
 /* The statistical tests of a run over these configurations (Sidak),
@@ -294,10 +298,11 @@ typedef struct cf_outcome {
     cf_v3 wo[CF_MAX_WO];
     cf_layout layout[CF_MAX_WO]; /* the cells of each direction (ncell 0: none) */
     double eta;                 /* the relative index found (Snell or reciprocity), or 0 */
-    /* the chi-square of each direction, for its power (power.c): samples,
-     * degrees of freedom, the reference mismatch's shape over its cells */
-    long pw_n[CF_MAX_WO], pw_dof[CF_MAX_WO];
-    double pw_v[CF_MAX_WO], pw_vcos[CF_MAX_WO]; /* the sampler warp's, the pdf shape's */
+    /* the tests of each direction, for their power (power.h): samples,
+     * the chi-square's degrees of freedom, and v[test][reference] over its
+     * cells (chi2, mean wi; the sampler warp, the pdf shape) */
+    long pw_n[CF_MAX_WO], pw_dof[CF_MAX_WO], pw_mdof[CF_MAX_WO]; /* and the mean test's */
+    double pw_v[CF_MAX_WO][2][2];
 } cf_outcome;
 
 /* Runs the checks of c on test (opened on c), against ref (materia opened
@@ -324,6 +329,10 @@ float cf_u_float(mt_rng *rng);
  * implementation's convention) u2 is unused, and held at 1/2: an
  * implementation that declares 2 and uses it shows it. */
 void cf_sample_numbers(const char *name, int w, int pilot, int sample_numbers, long n, float (*u)[3]);
+/* The same numbers a chunk at a time: the stream of direction w (or its
+ * pilot), then its next n triples. */
+void cf_sample_stream(mt_rng *rng, const char *name, int w, int pilot);
+void cf_sample_next(mt_rng *rng, int sample_numbers, long n, float (*u)[3]);
 
 /* Query lines as the protocol writes them. */
 void cf_q_eval(char *q, size_t n, cf_v3 wo, cf_v3 wi);

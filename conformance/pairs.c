@@ -176,8 +176,8 @@ int cf_pairs(cf_ctx *x)
         long own = 0;
         for (k = 0; k < PAIRS_PER_WO; ++k) {
             cf_v3 wi;
-            if (k >= PAIRS_PER_WO / 2 && own < d->ndirs) {
-                wi = d->dirs[own++];
+            if (k >= PAIRS_PER_WO / 2 && own < d->ndirs && own < CF_KEEP_DIRS) {
+                wi = d->first[own++];
             } else {
                 double u1 = mt_rng_uniform_d(&rng), u2 = mt_rng_uniform_d(&rng), z = 1 - 2 * u1, s = sqrt(fmax(0, 1 - z * z));
                 wi = cf_v3_make(s * cos(6.283185307179586 * u2), s * sin(6.283185307179586 * u2), z);

@@ -62,6 +62,11 @@
 /* the cubature's tolerance, 1e-7 relative per cell, summed over cells and
  * channels and rounded up: the slack of a deterministic albedo */
 #define QUAD_SLACK 1e-6
+/* samples answered at a time: the memory of a direction's samples is
+ * bounded (about 250 bytes each while answered) whatever their number */
+#define CHUNK 65536L
+/* --power's pilot at most (it lays 20 x 21 cells from 16 per cell) */
+#define POWER_PILOT 262144.0
 
 void cf_set(cf_result *r, int ok, const char *bound, const char *fmt, ...)
 {
@@ -217,76 +222,184 @@ static void measure_fraction(cf_result *r, long k, long n, double at, const char
 }
 
 /* ---- the samples of one direction ------------------------------------------ */
-static int wo_samples(cf_ctx *x, cf_wo_data *d)
+/* |wi| - 1 allowed of its samples */
+static double unit_tol_of(const cf_ctx *x, const cf_wo_data *d)
+{
+    const cf_impl *t = x->test;
+    return t->eps < 1e-10 && t->direct ? UNIT_TOL_DOUBLE + 4 * fabs(sqrt(cf_dot(d->wo, d->wo)) - 1) : UNIT_TOL_FLOAT;
+}
+
+/* Its pilot (another stream of random numbers) and the cells laid where
+ * the pilot fell, drawn before the samples counted in them: the cells, and
+ * with --power the samples per direction, are fixed before those samples
+ * exist. The pilot's answers are taken a chunk at a time; its non-delta
+ * directions are kept (the cubature starts where they lie). */
+static int wo_pilot(cf_ctx *x, cf_wo_data *d, int slot)
 {
     const cf_run *run = x->run;
     cf_impl *t = x->test;
-    long n = run->cfg.samples, i, np, nw, *idx = NULL;
+    cf_layout *l = &x->out->layout[slot];
+    long n = run->cfg.samples, np, i, done, m, chunk;
+    double unit_tol = unit_tol_of(x, d);
+    float (*u)[3] = NULL;
+    cf_samp *s = NULL;
+    cf_v3 *wos = NULL;
+    mt_rng rng;
+    int r = 0;
+    /* --power: the samples follow from the pilot, whatever is checked */
+    int pilot = (x->stages & ST_CELLS) || run->power > 0;
+    if (!pilot && !(x->stages & ST_PROBES)) return 0;
+    np = pilot ? (long)fmax((double)n / 4, (double)PILOT_PER_CELL * run->cfg.nphi * run->cfg.nz) : 0;
+    if (np > n) np = n;
+    /* --power: n is an estimate; the pilot need only lay the cells and
+     * tell the shapes */
+    if (run->power > 0 && np > POWER_PILOT) np = (long)fmax(POWER_PILOT, (double)PILOT_PER_CELL * run->cfg.nphi * run->cfg.nz);
+    d->npilot_drawn = np;
+    chunk = np < CHUNK ? np : CHUNK;
+    if (np > 0) {
+        u = malloc((size_t)chunk * sizeof *u);
+        s = malloc((size_t)chunk * sizeof *s);
+        wos = malloc((size_t)chunk * sizeof *wos);
+        d->pilot = malloc((size_t)np * sizeof *d->pilot);
+        if (!u || !s || !wos || !d->pilot) {
+            r = CF_NOMEM;
+            goto out;
+        }
+        for (i = 0; i < chunk; ++i) wos[i] = d->wo;
+        cf_sample_stream(&rng, x->c->name, d->index, 1);
+        for (done = 0; done < np; done += m) {
+            m = np - done < chunk ? np - done : chunk;
+            cf_sample_next(&rng, run->sample_numbers, m, u);
+            if ((r = t->ops->sample(t, (int)m, wos, (const float(*)[3])u, s))) goto out;
+            for (i = 0; i < m; ++i)
+                if (sample_valid(s + i, unit_tol) && s[i].pdf > 0 && !(s[i].flags & CF_SPECULAR)) {
+                    d->pilot[d->npilot++] = wi_of(s + i);
+                    d->across += cf_dot(wi_of(s + i), x->ng) * cf_dot(d->wo, x->ng) < 0;
+                }
+        }
+    }
+    if (x->fixed && x->fixed->layout[slot].ncell ? cf_layout_copy(l, &x->fixed->layout[slot])
+                                                : cf_layout_from(l, d->pilot, d->npilot, run->cfg.nphi, run->cfg.nz)) {
+        r = CF_NOMEM;
+        goto out;
+    }
+    if (!(d->counts = calloc((size_t)l->ncell, sizeof *d->counts))) r = CF_NOMEM;
+out:
+    free(u);
+    free(s);
+    free(wos);
+    return r;
+}
+
+/* --power: the samples per direction of the configuration, from its
+ * directions' pilots: each reference mismatch caught with probability 0.95
+ * by the test most powerful against it (power.h). The rows' probabilities
+ * are the pilot's counts in them; the cubature's, after the samples, give
+ * the figure the run prints. */
+static long power_samples(const cf_ctx *x)
+{
+    const cf_run *run = x->run;
+    cf_power_dir pd[CF_MAX_WO];
+    int w, nw = 0;
+    memset(pd, 0, sizeof pd);
+    for (w = 0; w < x->nwo && w < CF_MAX_WO; ++w) {
+        const cf_wo_data *d = x->w + w;
+        const cf_layout *l = &x->out->layout[w];
+        double *pc;
+        long i;
+        int mdof;
+        if (!l->ncell || !d->npilot_drawn || !(pc = calloc((size_t)l->ncell, sizeof *pc))) continue;
+        for (i = 0; i < d->npilot; ++i)
+            pc[cf_layout_cell(l, d->pilot[i].x, d->pilot[i].y, d->pilot[i].z)] += 1.0 / (double)d->npilot_drawn;
+        pd[nw].dof = l->ncell - 1;
+        cf_power_shapes(l, pc, pd[nw].v, &mdof);
+        pd[nw++].mdof = mdof;
+        free(pc);
+    }
+    return cf_power_samples_for(run->power, nw, pd, run->cfg.alpha_test, 0.95, run->power_max);
+}
+
+/* Its samples, a chunk at a time (memory bounded whatever their number;
+ * the same numbers, answers and sums in the same order as all at once):
+ * their validity, the Monte Carlo albedo, counts in the cells, and the f
+ * and pdf of the first identity_samples non-delta ones set against eval;
+ * then the probes of delta lobes. */
+static int wo_main(cf_ctx *x, cf_wo_data *d, int slot)
+{
+    const cf_run *run = x->run;
+    cf_impl *t = x->test;
+    const cf_layout *l = &x->out->layout[slot];
+    long n = d->n, i, done, m, chunk, nw, *idx = NULL, nidc;
     float (*u)[3] = NULL;
     cf_samp *s = NULL;
     cf_v3 *wos = NULL, *wis = NULL;
     cf_eval *ev = NULL;
-    double unit_tol = t->eps < 1e-10 && t->direct ? UNIT_TOL_DOUBLE + 4 * fabs(sqrt(cf_dot(d->wo, d->wo)) - 1)
-                                                   : UNIT_TOL_FLOAT;
+    double unit_tol = unit_tol_of(x, d);
     double id_tol = fmax(t->eps < 1e-10 ? IDENTITY_REL_DOUBLE : IDENTITY_REL_FLOAT, x->allow_own);
     cf_result *res = x->out->res;
     char q[200], an[240], ex[400], qs[200];
+    mt_rng rng;
     int r = 0, k;
-    np = (x->stages & ST_CELLS) ? (long)fmax((double)n / 4, (double)PILOT_PER_CELL * run->cfg.nphi * run->cfg.nz) : 0;
-    if (np > n) np = n;
-    d->n = n;
-    u = malloc((size_t)n * sizeof *u);
-    s = malloc((size_t)n * sizeof *s);
-    /* wo for every query of a batch: the samples, the pilot (np <= n) and
-     * the probes */
-    nw = n > cf_probe_count() ? n : cf_probe_count();
+    chunk = n < CHUNK ? n : CHUNK;
+    /* wo for every query of a batch: a chunk of samples, and the probes */
+    nw = chunk > cf_probe_count() ? chunk : cf_probe_count();
+    u = malloc((size_t)chunk * sizeof *u);
+    s = malloc((size_t)chunk * sizeof *s);
     wos = malloc((size_t)nw * sizeof *wos);
-    d->dirs = malloc((size_t)n * sizeof *d->dirs);
-    idx = malloc((size_t)n * sizeof *idx);
-    wis = malloc((size_t)n * sizeof *wis);
-    if (!u || !s || !wos || !d->dirs || !idx || !wis) {
+    idx = malloc((size_t)chunk * sizeof *idx);
+    wis = malloc((size_t)chunk * sizeof *wis);
+    ev = malloc((size_t)chunk * sizeof *ev);
+    if (!u || !s || !wos || !idx || !wis || !ev) {
         r = CF_NOMEM;
         goto out;
     }
     for (i = 0; i < nw; ++i) wos[i] = d->wo;
-    cf_sample_numbers(x->c->name, d->index, 0, run->sample_numbers, n, u);
-    if ((r = t->ops->sample(t, (int)n, wos, (const float(*)[3])u, s))) goto out;
-    for (i = 0; i < n; ++i) {
-        const cf_samp *y = s + i;
-        double c;
-        if (!sample_valid(y, unit_tol)) {
-            d->invalid++;
-            cf_q_sample(q, sizeof q, d->wo, u[i]);
-            cf_a_sample(an, sizeof an, y);
-            cf_worst_add(res[CK_IDENTITY].worst, 1e30, q, "finite, f >= 0, pdf >= 0, |wi| = 1", an, NULL);
-            continue;
+    cf_sample_stream(&rng, x->c->name, d->index, 0);
+    /* checks that need only the first directions sampled (the pairs'; run
+     * alone, --check): small chunks, until they are there */
+    if (!(x->stages & (ST_IDENTITY | ST_CELLS | ST_PROBES)) && chunk > 1024) chunk = 1024;
+    for (done = 0; done < n; done += m) {
+        if (!(x->stages & (ST_IDENTITY | ST_CELLS | ST_PROBES)) && d->ndirs >= CF_KEEP_DIRS) break;
+        m = n - done < chunk ? n - done : chunk;
+        cf_sample_next(&rng, run->sample_numbers, m, u);
+        if ((r = t->ops->sample(t, (int)m, wos, (const float(*)[3])u, s))) goto out;
+        nidc = 0;
+        for (i = 0; i < m; ++i) {
+            const cf_samp *y = s + i;
+            double c;
+            if (!sample_valid(y, unit_tol)) {
+                d->invalid++;
+                cf_q_sample(q, sizeof q, d->wo, u[i]);
+                cf_a_sample(an, sizeof an, y);
+                cf_worst_add(res[CK_IDENTITY].worst, 1e30, q, "finite, f >= 0, pdf >= 0, |wi| = 1", an, NULL);
+                continue;
+            }
+            if (!(y->pdf > 0)) continue;
+            c = fabs(cf_dot(wi_of(y), x->ns));
+            for (k = 0; k < 3; ++k) {
+                double wgt = y->f[k] * c / y->pdf;
+                d->mc[k] += wgt;
+                d->mc2[k] += wgt * wgt;
+            }
+            if (y->flags & CF_SPECULAR) {
+                d->delta++;
+                d->delta_trans += (y->flags & CF_TRANSMISSION) != 0;
+                continue;
+            }
+            if (d->nid < run->identity_samples) {
+                idx[nidc] = i;
+                wis[nidc++] = wi_of(y);
+                d->nid++;
+            }
+            if (d->ndirs < CF_KEEP_DIRS) d->first[d->ndirs] = wi_of(y);
+            d->ndirs++;
+            d->across += cf_dot(wi_of(y), x->ng) * cf_dot(d->wo, x->ng) < 0;
+            if (l->ncell) d->counts[cf_layout_cell(l, y->wi[0], y->wi[1], y->wi[2])]++;
         }
-        if (!(y->pdf > 0)) continue;
-        c = fabs(cf_dot(wi_of(y), x->ns));
-        for (k = 0; k < 3; ++k) {
-            double wgt = y->f[k] * c / y->pdf;
-            d->mc[k] += wgt;
-            d->mc2[k] += wgt * wgt;
-        }
-        if (y->flags & CF_SPECULAR) {
-            d->delta++;
-            d->delta_trans += (y->flags & CF_TRANSMISSION) != 0;
-            continue;
-        }
-        if (d->nid < run->identity_samples) {
-            idx[d->nid] = i;
-            wis[d->nid++] = wi_of(y);
-        }
-        d->dirs[d->ndirs++] = wi_of(y);
-    }
-    /* identity: eval where the samples went, at the wi returned */
-    if ((x->stages & ST_IDENTITY) && d->nid) {
-        if (!(ev = malloc((size_t)d->nid * sizeof *ev))) {
-            r = CF_NOMEM;
-            goto out;
-        }
-        if ((r = t->ops->eval(t, (int)d->nid, wos, wis, ev))) goto out;
-        for (i = 0; i < d->nid; ++i) {
+        /* identity: eval where the samples went, at the wi returned */
+        if (!(x->stages & ST_IDENTITY) || !nidc) continue;
+        if ((r = t->ops->eval(t, (int)nidc, wos, wis, ev))) goto out;
+        for (i = 0; i < nidc; ++i) {
             const cf_samp *y = s + idx[i];
             double e = cf_rel(y->pdf, ev[i].pdf);
             for (k = 0; k < 3; ++k) e = fmax(e, cf_rel(y->f[k], ev[i].f[k]));
@@ -299,18 +412,6 @@ static int wo_samples(cf_ctx *x, cf_wo_data *d)
                 cf_worst_add(res[CK_IDENTITY].worst, isfinite(e) ? e / id_tol : 1e30, q, ex, an, qs);
             }
         }
-    }
-    /* the pilot: another stream of random numbers, for the cells */
-    if (np > 0) {
-        cf_sample_numbers(x->c->name, d->index, 1, run->sample_numbers, np, u);
-        if ((r = t->ops->sample(t, (int)np, wos, (const float(*)[3])u, s))) goto out;
-        if (!(d->pilot = malloc((size_t)np * sizeof *d->pilot))) {
-            r = CF_NOMEM;
-            goto out;
-        }
-        for (i = 0; i < np; ++i)
-            if (sample_valid(s + i, unit_tol) && s[i].pdf > 0 && !(s[i].flags & CF_SPECULAR))
-                d->pilot[d->npilot++] = wi_of(s + i);
     }
     /* the delta lobes */
     if (x->stages & ST_PROBES) {
@@ -349,9 +450,9 @@ typedef struct acc {
         int hard, wo;
         char where[672]; /* wod[200], cells[420] and the count (core.h cf_result.where the same) */
     } chi[2];
-    double worst_int, worst_mc, worst_gap, worst_excess, rho_lo, rho_hi;
-    int int_wo, mc_wo, rho_wo, gap_bad, other;
-    char int_what[160], mc_what[200], rho_what[160], gap_what[160];
+    double worst_int, worst_mc, worst_gap, worst_excess, rho_lo, rho_hi, mean_p;
+    int int_wo, mc_wo, rho_wo, gap_bad, other, mean_wo, mean_dof;
+    char int_what[160], mc_what[200], rho_what[160], gap_what[160], mean_what[160];
 } acc;
 
 /* The three cells furthest from their expected count, as a renderer author
@@ -433,10 +534,11 @@ static void chi2_of(cf_ctx *x, acc *a, int which, cf_wo_data *d, const cf_layout
     cf_chi2_counts(l->ncell, counts, pdfc, d->n, d->ndirs, integral, &c2);
     plot(x, which, d, l, counts, pdfc, &c2);
     if (which == 0 && d->index < CF_MAX_WO) { /* its power (power.c) */
+        int mdof;
         x->out->pw_n[d->index] = d->n;
         x->out->pw_dof[d->index] = c2.dof;
-        x->out->pw_v[d->index] = cf_power_shape(l, pdfc);
-        x->out->pw_vcos[d->index] = cf_power_shape_cos(l, pdfc);
+        cf_power_shapes(l, pdfc, x->out->pw_v[d->index], &mdof);
+        x->out->pw_mdof[d->index] = mdof;
     }
     if (c2.hard) a->chi[which].hard = 1;
     if (c2.p < a->chi[which].min_p) {
@@ -447,6 +549,71 @@ static void chi2_of(cf_ctx *x, acc *a, int which, cf_wo_data *d, const cf_layout
         cf_describe_wo(d->wo, wod, sizeof wod);
         worst_cells(l, counts, pdfc, d->n, cells, sizeof cells);
         snprintf(a->chi[which].where, sizeof a->chi[which].where, "%s, %ld samples: %s", wod, d->n, cells);
+    }
+}
+
+/* The mean of its sampled directions against the mean its pdf gives: each
+ * non-delta sample counted at its cell's centre, x, y, z and its row's
+ * |z| (cf_mean_funcs), so the statistic is a few linear contrasts of the
+ * chi-square's counts, whose expectations and covariance under its own pdf
+ * come from the same cubature: nothing but the samples is random. Given
+ * the N samples in cells, they are N draws of the pdf normalized over the
+ * cells; in the functions' combinations orthonormal under it (as many as
+ * are independent: 3 above the surface, where z = |z|), N times the
+ * squared deviations of the means is a chi-square of that many degrees of
+ * freedom. The cubature's error (its total over the cells, relative to
+ * the pdf's integral, bounds each mean's error times the combination's
+ * coefficients) and the rounding allowance are taken off each deviation
+ * first. */
+static void mean_of(cf_ctx *x, acc *a, const cf_wo_data *d, const cf_layout *l, const long *counts, const double *pdfc,
+                    double cerr)
+{
+    cf_result *res = &x->out->res[CK_MEAN];
+    double p = 0, so[CF_MEAN_DIM] = {0, 0, 0, 0}, h[CF_MEAN_DIM], t = 0, pv, worst = 0;
+    static const char *const fname[CF_MEAN_DIM] = {"x", "y", "z", "|z|"};
+    static const char *const mean_what[CF_MEAN_DIM] = {
+        "the mean x of its samples minus its pdf's at cos %.3g", "the mean y of its samples minus its pdf's at cos %.3g",
+        "the mean z of its samples minus its pdf's at cos %.3g", "the mean |z| of its samples minus its pdf's at cos %.3g"};
+    cf_mean_basis b;
+    long nd = 0;
+    int c, j, k, wj = 3;
+    for (c = 0; c < l->ncell; ++c) {
+        p += pdfc[c] > 0 ? pdfc[c] : 0;
+        if (!counts[c]) continue;
+        cf_mean_funcs(l, c, h);
+        for (j = 0; j < CF_MEAN_DIM; ++j) so[j] += (double)counts[c] * h[j];
+        nd += counts[c];
+    }
+    if (!(p > 0) || nd < 1 || !cf_mean_basis_of(l, pdfc, &b)) return; /* nothing to set against (chi2 says why) */
+    for (j = 0; j < CF_MEAN_DIM; ++j) so[j] /= (double)nd;
+    for (k = 0; k < b.rank; ++k) {
+        double e = 0, sys = 0;
+        for (j = 0; j < CF_MEAN_DIM; ++j) {
+            e += b.a[k][j] * (so[j] - b.mu[j]);
+            sys += fabs(b.a[k][j]) * (2 * cerr / p + x->allow);
+        }
+        e = fmax(0, fabs(e) - sys);
+        t += (double)nd * e * e;
+    }
+    pv = cf_chi2_pvalue(t, b.rank);
+    for (j = 0; j < CF_MEAN_DIM; ++j) {
+        double dv = so[j] - b.mu[j];
+        cf_measure_add(res, dv, sqrt(b.var[j] / (double)nd), 2 * cerr / p + x->allow, d->wo.z, mean_what[j]);
+        if (b.var[j] > 0 && fabs(dv) / sqrt(b.var[j]) > worst) {
+            worst = fabs(dv) / sqrt(b.var[j]);
+            wj = j;
+        }
+    }
+    if (pv < a->mean_p || a->mean_wo < 0) {
+        char wod[200];
+        a->mean_p = fmin(a->mean_p, pv);
+        a->mean_wo = d->index;
+        a->mean_dof = b.rank;
+        snprintf(a->mean_what, sizeof a->mean_what, "%s %.6f vs %.6f at cos %.4g", fname[wj], so[wj], b.mu[wj], d->wo.z);
+        cf_describe_wo(d->wo, wod, sizeof wod);
+        snprintf(res->where, sizeof res->where, "%s: the means of its %ld samples in cells: x %.6f y %.6f z %.6f |z| %.6f; "
+                 "its pdf's: x %.6f y %.6f z %.6f |z| %.6f (%d dof, chi2 %.3g)", wod, nd, so[0], so[1], so[2], so[3],
+                 b.mu[0], b.mu[1], b.mu[2], b.mu[3], b.rank, t);
     }
 }
 
@@ -473,30 +640,29 @@ static void lobes_energy(const cf_ctx *x, const cf_wo_data *d, double *fwd, doub
 
 static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
 {
-    const cf_run *run = x->run;
     cf_result *res = x->out->res;
     cf_layout *l = &x->out->layout[slot];
-    long *counts = NULL, i, n = d->n;
+    long *counts = NULL, n = d->n;
     double *pdfc = NULL, *pdfm = NULL, tot[7], err[7], oth[7], oerr[7], dfwd[3], den[3];
     double cerr, ferr, integral, succ, se, tol;
     cf_regions rg;
-    int k, r = 0;
+    /* no cells where nothing was seen, nor for checks that need none (agree
+     * delta alone needs the probes, not the cubature) */
+    int k, r = 0, cells = x->density && (x->stages & ST_CELLS);
     memset(&rg, 0, sizeof rg);
     lobes_energy(x, d, dfwd, den);
-    if (!x->density) {
+    if (!cells) {
+        cf_layout_free(l);
         for (k = 0; k < 7; ++k) tot[k] = err[k] = 0;
     } else {
-        if (x->fixed && x->fixed->layout[slot].ncell ? cf_layout_copy(l, &x->fixed->layout[slot])
-                                                    : cf_layout_from(l, d->pilot, d->npilot, run->cfg.nphi, run->cfg.nz))
-            return CF_NOMEM;
-        counts = calloc((size_t)l->ncell, sizeof *counts);
+        /* the cells (wo_pilot) and the counts in them (wo_main) */
+        counts = d->counts;
         pdfc = calloc((size_t)l->ncell, sizeof *pdfc);
         pdfm = calloc((size_t)l->ncell, sizeof *pdfm);
-        if (!counts || !pdfc || !pdfm) {
+        if (!pdfc || !pdfm) {
             r = CF_NOMEM;
             goto out;
         }
-        for (i = 0; i < d->ndirs; ++i) counts[cf_layout_cell(l, d->dirs[i].x, d->dirs[i].y, d->dirs[i].z)]++;
         if ((r = cf_regions_build(&rg, l, d->pilot, d->npilot)) ||
             (r = cf_cells_integrate(x->test, l, &rg, d->wo, x->ns, x->ng, 0, n, pdfc, tot, err)))
             goto out;
@@ -505,11 +671,12 @@ static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
     cerr = err[0];
     ferr = fmax(err[1], fmax(err[2], err[3]));
     succ = (double)d->ndirs / n;
-    if (x->density) {
+    if (cells) {
         cf_measure_hist(&res[CK_CHI2], counts, l->ncell, n - d->ndirs, d->wo.z);
         cf_measure_hist(&res[CK_CHI2_MATERIA], counts, l->ncell, n - d->ndirs, d->wo.z);
         /* chi2 and the pdf's integral */
         chi2_of(x, a, 0, d, l, counts, pdfc, integral);
+        mean_of(x, a, d, l, counts, pdfc, cerr);
         se = sqrt(fmax(succ * (1 - succ), 1.0 / n) / n);
         tol = x->z * se + cerr + x->allow;
         cf_measure_add(&res[CK_INTEGRAL], integral - succ, se, cerr + x->allow, d->wo.z,
@@ -532,10 +699,7 @@ static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
         }
         /* the energy of light arriving from wo, in radiance transport */
         if (x->test->conv.transport == CF_RADIANCE) {
-            long across = 0;
-            for (i = 0; i < d->ndirs; ++i) across += cf_dot(d->dirs[i], x->ng) * cf_dot(d->wo, x->ng) < 0;
-            for (i = 0; i < d->npilot; ++i) across += cf_dot(d->pilot[i], x->ng) * cf_dot(d->wo, x->ng) < 0;
-            if (across) {
+            if (d->across) {
                 if ((r = cf_cells_integrate(x->test, l, &rg, d->wo, x->ns, x->ng, 1, n, NULL, oth, oerr))) goto out;
                 a->other = 1;
                 for (k = 0; k < 3; ++k) den[k] += oth[3 + k] - oth[k];
@@ -549,7 +713,7 @@ static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
         double se_mc = sqrt(fmax(d->mc2[k] / n - m * m, 0) / n);
         double sys = ferr + x->allow * fabs(q) + (double)n * DBL_EPSILON * fabs(q) + 1e-12, dev;
         double gap_tol = ferr + x->allow * fabs(fq) + QUAD_SLACK, rho, slack, excess = 0, v = x->c->expect_rho;
-        if (x->density) {
+        if (cells) {
             if (gap > gap_tol && !(x->c->flags & CF_CASE_SHADING_GAP) && !a->gap_bad) {
                 a->gap_bad = 1;
                 snprintf(a->gap_what, sizeof a->gap_what, "f > 0 where pdf = 0: %.4g of rho unreachable at cos %.4g", gap,
@@ -598,7 +762,6 @@ static int wo_cells(cf_ctx *x, acc *a, cf_wo_data *d, int slot)
     measure_fraction(&res[CK_IDENTITY], d->unlike, d->nid, d->wo.z, "the fraction of samples unlike eval at cos %.3g");
 out:
     cf_regions_free(&rg);
-    free(counts);
     free(pdfc);
     free(pdfm);
     return r;
@@ -606,7 +769,7 @@ out:
 
 static void free_wo(cf_wo_data *d)
 {
-    free(d->dirs);
+    free(d->counts);
     free(d->pilot);
     free(d->probe);
     free(d->probe_ref);
@@ -619,16 +782,17 @@ static void finish(cf_ctx *x, acc *a)
     const cf_run *run = x->run;
     char b[64];
     int w, k;
-    long invalid = 0, unlike = 0, nid = 0;
+    long invalid = 0, unlike = 0, nid = 0, drawn = 0;
     double id_tol = fmax(x->test->eps < 1e-10 ? IDENTITY_REL_DOUBLE : IDENTITY_REL_FLOAT, x->allow_own);
     for (w = 0; w < x->nwo; ++w) {
         invalid += x->w[w].invalid;
         unlike += x->w[w].unlike;
         nid += x->w[w].nid;
+        drawn += x->w[w].n;
     }
     snprintf(b, sizeof b, "rel <= %.2g", id_tol);
     cf_set(&res[CK_IDENTITY], invalid + unlike == 0, b, "%ld invalid of %ld samples, %ld of %ld unlike eval",
-           invalid, (long)x->nwo * run->cfg.samples, unlike, nid);
+           invalid, drawn, unlike, nid);
     if (x->density) {
         snprintf(b, sizeof b, "p >= %.2g", run->cfg.alpha_test);
         for (k = 0; k < 2; ++k) {
@@ -641,6 +805,13 @@ static void finish(cf_ctx *x, acc *a)
                        a->chi[k].dof);
             r->wo = a->chi[k].wo;
             snprintf(r->where, sizeof r->where, "%s", a->chi[k].where);
+        }
+        if (a->mean_wo >= 0) {
+            cf_set(&res[CK_MEAN], a->mean_p >= run->cfg.alpha_test, b, "min p %.3g (%d dof; %s)", a->mean_p, a->mean_dof,
+                   a->mean_what);
+            res[CK_MEAN].wo = a->mean_wo;
+        } else {
+            cf_set(&res[CK_MEAN], 1, "p >= alpha", "not applicable: no sample in a cell (chi2 and pdf integral judge it)");
         }
         cf_set(&res[CK_INTEGRAL], a->worst_int <= 1, "dev/tol <= 1", "dev/tol %.2f (%s)", a->worst_int, a->int_what);
         res[CK_INTEGRAL].wo = a->int_wo;
@@ -674,7 +845,6 @@ static unsigned stages_of(const cf_run *run, const cf_impl *ref)
         if (cf_checks[k].kind == CF_AGREEMENT && !ref) continue;
         s |= cf_checks[k].stages;
     }
-    /* the agreement of delta lobes needs materia's probes beside its own */
     return s;
 }
 
@@ -696,7 +866,8 @@ int cf_run_case(const cf_run *run, const cf_case *c, cf_impl *test, cf_impl *ref
     a.chi[0].wo = a.chi[1].wo = -1;
     a.rho_lo = 1e300;
     a.rho_hi = -1e300;
-    a.int_wo = a.mc_wo = a.rho_wo = -1;
+    a.int_wo = a.mc_wo = a.rho_wo = a.mean_wo = -1;
+    a.mean_p = 2;
     x.run = run;
     x.c = c;
     x.test = test;
@@ -721,13 +892,24 @@ int cf_run_case(const cf_run *run, const cf_case *c, cf_impl *test, cf_impl *ref
         x.w[w].wo = wo[w];
         x.w[w].index = w;
     }
-    /* the samples of every direction (the one asked alone, with --wo) */
+    x.nwo = nwo;
+    /* the pilots and cells of every direction (the one asked alone, with
+     * --wo), then their samples: as many as the run's, the configuration
+     * that fixed the cells', or (--power) as many as its pilots say */
     for (w = 0; w < nwo && !r; ++w) {
         if (run->only_wo >= 0 && w != run->only_wo) continue;
-        r = wo_samples(&x, &x.w[w]);
+        r = wo_pilot(&x, &x.w[w], w);
+    }
+    {
+        long np = !r && run->power > 0 ? power_samples(&x) : run->cfg.samples;
+        for (w = 0; w < nwo; ++w)
+            if (run->only_wo < 0 || w == run->only_wo) x.w[w].n = fixed && fixed->pw_n[w] && run->power > 0 ? fixed->pw_n[w] : np;
+    }
+    for (w = 0; w < nwo && !r; ++w) {
+        if (run->only_wo >= 0 && w != run->only_wo) continue;
+        r = wo_main(&x, &x.w[w], w);
         if (x.w[w].ndirs || x.w[w].npilot) x.density = 1;
     }
-    x.nwo = nwo;
     /* specular transmission there and back (the index its answers give),
      * pairs (which also tell a density the samples did not show), delta
      * lobes, extremes */
@@ -746,7 +928,8 @@ int cf_run_case(const cf_run *run, const cf_case *c, cf_impl *test, cf_impl *ref
             for (k = CK_CHI2; k <= CK_FURNACE; ++k) out->res[k].ok = -1;
         }
         if (!(x.stages & ST_IDENTITY)) out->res[CK_IDENTITY].ok = -1;
-        if (!(x.stages & ST_CELLS)) out->res[CK_CHI2].ok = out->res[CK_INTEGRAL].ok = out->res[CK_CHI2_MATERIA].ok = -1;
+        if (!(x.stages & ST_CELLS))
+            out->res[CK_CHI2].ok = out->res[CK_MEAN].ok = out->res[CK_INTEGRAL].ok = out->res[CK_CHI2_MATERIA].ok = -1;
     }
     out->eta = x.eta;
     for (w = 0; w < nwo; ++w) free_wo(&x.w[w]);

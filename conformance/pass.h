@@ -22,15 +22,21 @@ typedef struct cf_lobe {
     int count; /* probes that found it */
 } cf_lobe;
 
+/* The non-delta sample directions of a direction that the pass keeps
+ * beside their counts: the pairs' half that starts where it samples. */
+#define CF_KEEP_DIRS 48
+
 /* What the pass keeps of one incoming direction. */
 typedef struct cf_wo_data {
     cf_v3 wo;
     int index;           /* in the configuration's set (its seeds) */
     long n;              /* main samples */
-    cf_v3 *dirs;         /* the non-delta samples' directions */
-    long ndirs;
+    long *counts;        /* the non-delta samples in each of its cells (its layout's) */
+    long ndirs;          /* how many */
+    cf_v3 first[CF_KEEP_DIRS]; /* the first of them (the pairs start from them) */
+    long across;         /* of them and of the pilot's, how many across the surface (by ng) */
     cf_v3 *pilot;        /* the pilot's non-delta directions */
-    long npilot;
+    long npilot, npilot_drawn;
     long invalid, unlike, nid, delta, delta_trans;
     double mc[3], mc2[3]; /* sums of f |cos| / pdf and its square over the samples */
     cf_lobe lobes[CF_MAX_LOBES];

@@ -47,7 +47,7 @@ static size_t regex_of(const char *name, char *out, size_t n)
 
 static int statistical(int k)
 {
-    return k == CK_CHI2 || k == CK_INTEGRAL || k == CK_CHI2_MATERIA || k == CK_FURNACE_MC || k == CK_FURNACE;
+    return k == CK_CHI2 || k == CK_MEAN || k == CK_INTEGRAL || k == CK_CHI2_MATERIA || k == CK_FURNACE_MC || k == CK_FURNACE;
 }
 
 void cf_repro_command(const cf_repro *rp, const cf_run *run, const cf_case *c, int k, int w, char *out, size_t n)
@@ -93,7 +93,7 @@ int cf_repro_write(const cf_repro *rp, const cf_run *run, const cf_case *c, cons
         fprintf(f, "%s\n", run->mode == MT_MODE_PBRT_V2 ? "mode pbrt-v2" : "mode corrected");
         for (j = 0; j < c->nlines; ++j) fprintf(f, "%s\n", c->lines[j]);
         if (w >= 0 && w < o->nwo) {
-            long n = run->cfg.samples, i;
+            long n = o->pw_n[w] > 0 ? o->pw_n[w] : run->cfg.samples, i; /* --power: the pass's own */
             float (*u)[3] = malloc((size_t)n * sizeof *u);
             if (!u) {
                 fclose(f);
