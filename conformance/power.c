@@ -120,7 +120,7 @@ int cf_mean_basis_of(const cf_layout *l, const double *pc, cf_mean_basis *b)
 
 void cf_power_shapes(const cf_layout *l, const double *pc, double v[CF_PW_NTEST][CF_PW_NREF], int *mdof)
 {
-    double total = 0, below = 0, m = 0, chi = 0, var = 0, proj[CF_PW_NREF][CF_MEAN_DIM], *g = NULL, h[CF_MEAN_DIM];
+    double total = 0, below = 0, m = 0, chi = 0, var = 0, spread = 0, proj[CF_PW_NREF][CF_MEAN_DIM], *g = NULL, h[CF_MEAN_DIM];
     double *prow = calloc((size_t)(l->nrow > 0 ? l->nrow : 1), sizeof *prow);
     cf_mean_basis b;
     int r, c, k, j;
@@ -144,8 +144,15 @@ void cf_power_shapes(const cf_layout *l, const double *pc, double v[CF_PW_NTEST]
         var += prow[r] * hr * hr;
         below += prow[r];
     }
+    /* The pdf shape is measured in the lobe's own spread: the tilt is eps
+     * times |cos theta_i|'s standardized deviation times a Lambertian lobe's
+     * standard deviation (1 / sqrt 18), which on a Lambertian lobe is exactly
+     * 1 + eps (|cos theta_i| - m). Unscaled, a narrow glossy lobe (|cos
+     * theta_i| nearly constant over it) would ask for millions of samples to
+     * see a tilt that changes its pdf by far less than eps anywhere. */
+    spread = var > 0 ? (1.0 / 18) / var : 0;
     v[CF_PW_CHI2][CF_PW_WARP] = chi;
-    v[CF_PW_CHI2][CF_PW_SHAPE] = var;
+    v[CF_PW_CHI2][CF_PW_SHAPE] = var * spread;
     /* the mean test: the mismatch's projection on its orthonormal
      * functions, squared and summed (times the fraction in cells) */
     *mdof = cf_mean_basis_of(l, pc, &b);
@@ -165,7 +172,7 @@ void cf_power_shapes(const cf_layout *l, const double *pc, double v[CF_PW_NTEST]
     }
     for (k = 0; k < b.rank; ++k) {
         v[CF_PW_MEAN][CF_PW_WARP] += total * proj[CF_PW_WARP][k] * proj[CF_PW_WARP][k];
-        v[CF_PW_MEAN][CF_PW_SHAPE] += total * proj[CF_PW_SHAPE][k] * proj[CF_PW_SHAPE][k];
+        v[CF_PW_MEAN][CF_PW_SHAPE] += spread * total * proj[CF_PW_SHAPE][k] * proj[CF_PW_SHAPE][k];
     }
 out:
     free(prow);

@@ -28,8 +28,11 @@ double cf_chi2_upper_quantile(double alpha, double dof);
  *               the distribution of z = cos theta_i under p's non-delta part
  *               (the warp u -> u + eps u (1 - u) of an inverse-CDF sampler of
  *               cos theta_i); the pdf honest
- *  CF_PW_SHAPE  the pdf is p (1 + eps (|cos theta_i| - m)), m the mean of
- *               |cos theta_i| under p; the samples follow p
+ *  CF_PW_SHAPE  the pdf is p (1 + eps s (|cos theta_i| - m)), m the mean
+ *               and sd the standard deviation of |cos theta_i| under p,
+ *               s = (1 / sqrt 18) / sd: a tilt measured in the lobe's own
+ *               spread, exactly 1 + eps (cos theta_i - m) on a Lambertian
+ *               lobe; the samples follow p
  *
  * Each test's statistic is then (for small eps) a non-central chi-square
  * of non-centrality n eps^2 v: v[test][ref] of a direction, from its cells
