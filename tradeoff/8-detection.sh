@@ -24,7 +24,7 @@
 # names, default "matte Kd=1|plastic default"), DET_KIND (warp; pdf or f
 # plant the other classes), DET_SEEDS (seeds a point for every curve, else
 # each curve's own: lib-power 20, lib-default 40, text-default 10,
-# mitsuba 40), DET_EPS_LIB_POWER, DET_EPS_DEFAULT, DET_EPS_MITSUBA (the EPS
+# mitsuba 40; DET_SEEDS_LIB_POWER etc. set one curve's), DET_EPS_LIB_POWER, DET_EPS_DEFAULT, DET_EPS_MITSUBA (the EPS
 # lists), DET_LABEL (what the report says the curves were made at; default
 # the source's git commit).
 # Writes OUT/8-detection.csv (one row a point: curve, configuration, kind,
@@ -61,6 +61,8 @@ EPS_MITSUBA=${DET_EPS_MITSUBA:-"0.005 0.01 0.02 0.05 0.1"}
 MPY=${MITSUBA_PYTHON:-python3}
 LABEL=${DET_LABEL:-"commit $(git -C "$TRADEOFF_DIR/.." rev-parse --short HEAD 2>/dev/null || echo unknown)"}
 seeds_of() {
+    _so=$(eval "echo \"\${DET_SEEDS_$(printf '%s' "$1" | tr 'a-z-' 'A-Z_'):-}\"")
+    if [ -n "$_so" ]; then echo "$_so"; return; fi
     if [ -n "${DET_SEEDS:-}" ]; then echo "$DET_SEEDS"; return; fi
     if [ "$QUICK" = 1 ]; then echo 3; return; fi
     case $1 in lib-power) echo 20 ;; lib-default) echo 40 ;; text-default) echo 10 ;; *) echo 40 ;; esac
