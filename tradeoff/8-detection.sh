@@ -19,7 +19,7 @@
 #
 # Environment: MT_BIN (a build's bin directory: tools/run-tradeoff.sh sets it)
 # or DET_BUILD (the build directory, e.g. build/float), OUT (output
-# directory), QUICK (1: 3 seeds a point), GNUPLOT (path or empty; found on
+# directory), QUICK (1: matte only, 3 EPS and 3 seeds a curve), GNUPLOT (path or empty; found on
 # PATH when unset), MITSUBA_PYTHON, DET_CURVES, DET_CONFIGS (|-separated
 # names, default "matte Kd=1|plastic default"), DET_KIND (warp; pdf or f
 # plant the other classes), DET_SEEDS (seeds a point for every curve, else
@@ -53,11 +53,18 @@ PLUGIN=$BUILD/tests/plugin_planted.so
 tr_need "$BUILD/bin/materia-conformance" "$BUILD/bin/materia-plugin-host"
 [ -f "$PLUGIN" ] || tr_die "$PLUGIN: not built (make tests builds it)"
 CURVES=${DET_CURVES:-"lib-power lib-default text-default mitsuba"}
-CONFIGS=${DET_CONFIGS:-"matte Kd=1|plastic default"}
 KIND=${DET_KIND:-warp}
-EPS_LIB_POWER=${DET_EPS_LIB_POWER:-"0.0025 0.005 0.01 0.02 0.05"}
-EPS_DEFAULT=${DET_EPS_DEFAULT:-"0.01 0.02 0.05 0.1 0.2"}
-EPS_MITSUBA=${DET_EPS_MITSUBA:-"0.005 0.01 0.02 0.05 0.1"}
+if [ "$QUICK" = 1 ]; then # a few minutes: one configuration, three points a curve
+    CONFIGS=${DET_CONFIGS:-"matte Kd=1"}
+    EPS_LIB_POWER=${DET_EPS_LIB_POWER:-"0.005 0.01 0.02"}
+    EPS_DEFAULT=${DET_EPS_DEFAULT:-"0.02 0.05 0.1"}
+    EPS_MITSUBA=${DET_EPS_MITSUBA:-"0.01 0.02 0.05"}
+else
+    CONFIGS=${DET_CONFIGS:-"matte Kd=1|plastic default"}
+    EPS_LIB_POWER=${DET_EPS_LIB_POWER:-"0.0025 0.005 0.01 0.02 0.05"}
+    EPS_DEFAULT=${DET_EPS_DEFAULT:-"0.01 0.02 0.05 0.1 0.2"}
+    EPS_MITSUBA=${DET_EPS_MITSUBA:-"0.005 0.01 0.02 0.05 0.1"}
+fi
 MPY=${MITSUBA_PYTHON:-python3}
 LABEL=${DET_LABEL:-"commit $(git -C "$TRADEOFF_DIR/.." rev-parse --short HEAD 2>/dev/null || echo unknown)"}
 seeds_of() {
