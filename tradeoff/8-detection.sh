@@ -25,10 +25,13 @@
 # plant the other classes), DET_SEEDS (seeds a point for every curve, else
 # each curve's own: lib-power 20, lib-default 40, text-default 10,
 # mitsuba 40; DET_SEEDS_LIB_POWER etc. set one curve's), DET_EPS_LIB_POWER, DET_EPS_DEFAULT, DET_EPS_MITSUBA (the EPS
-# lists), DET_LABEL (what the report says the curves were made at; default
-# the source's git commit).
+# lists), DET_LABEL (what the curves were made at, in the CSV and the report;
+# default the source's git commit), DET_KEEP (an earlier 8-detection.csv:
+# its rows of the curves not in DET_CURVES are kept, so that one curve can
+# be measured again on another build and plotted with the others).
 # Writes OUT/8-detection.csv (one row a point: curve, configuration, kind,
-# eps, caught, runs, rate, its 95% Wilson interval, seconds, load average),
+# eps, caught, runs, rate, its 95% Wilson interval, seconds, load average,
+# label),
 # 8-detection.png and 8-detection.md.
 #
 #   DET_BUILD=build/float OUT=build/tradeoff sh tradeoff/8-detection.sh
@@ -78,7 +81,8 @@ CSV=$OUT/8-detection.csv
 MD=$OUT/8-detection.md
 mkdir -p "$OUT" || exit 1
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/mt-detection.XXXXXX") || exit 1
-trap 'rm -rf "$TMP"' EXIT INT TERM
+trap 'rm -rf "$TMP"' EXIT
+trap 'exit 1' INT TERM
 
 MITSUBA=0
 if printf '%s\n' "$CURVES" | grep -qw mitsuba; then
@@ -96,7 +100,11 @@ point() { # curve config kind eps seeds
     esac | awk -F'\t' 'NF >= 6 { print $5, $6 }'
 }
 
-echo "curve,config,kind,eps,caught,runs,rate,lo95,hi95,seconds,load" >"$TMP/csv"
+echo "curve,config,kind,eps,caught,runs,rate,lo95,hi95,seconds,load,label" >"$TMP/csv"
+if [ -n "${DET_KEEP:-}" ]; then
+    [ -f "$DET_KEEP" ] || tr_die "DET_KEEP=$DET_KEEP: no such file"
+    awk -F, -v run=" $CURVES " 'NR > 1 && index(run, " " $1 " ") == 0' "$DET_KEEP" >>"$TMP/csv"
+fi
 status=0
 for curve in $CURVES; do
     case $curve in
@@ -117,10 +125,10 @@ for curve in $CURVES; do
                 echo "8-detection: $curve '$config' $kind $eps: no result" >&2; status=1; continue
             fi
             echo "8-detection: $curve '$config' $kind $eps: $r (load $load)" >&2
-            echo "$r" | awk -v c="$curve" -v cf="$config" -v k="$kind" -v e="$eps" -v l="$load" '{
+            echo "$r" | awk -v c="$curve" -v cf="$config" -v k="$kind" -v e="$eps" -v l="$load" -v lb="$(printf '%s' "$LABEL" | tr ',' ';')" '{
                 split($1, a, "/"); x = a[1]; n = a[2]; p = x / n; z = 1.959964
                 d = 1 + z * z / n; m = (p + z * z / (2 * n)) / d; h = z * sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-                printf "%s,%s,%s,%s,%d,%d,%.4f,%.4f,%.4f,%s,%s\n", c, cf, k, e, x, n, p, (m - h < 0 ? 0 : m - h), (m + h > 1 ? 1 : m + h), $2, l }' \
+                printf "%s,%s,%s,%s,%d,%d,%.4f,%.4f,%.4f,%s,%s,%s\n", c, cf, k, e, x, n, p, (m - h < 0 ? 0 : m - h), (m + h > 1 ? 1 : m + h), $2, l, lb }' \
                 >>"$TMP/csv"
         done
     done
@@ -131,7 +139,7 @@ mv "$TMP/csv" "$CSV"
 slug() { printf '%s' "$1" | tr -c 'A-Za-z0-9' '_'; }
 IFS='|'; set -- $CONFIGS; unset IFS
 panels=0; plots=""
-titles="lib-power:in-process, --power 0.01 --quick|lib-default:in-process, defaults|text-default:text protocol, defaults|mitsuba:Mitsuba 3 chi2 (1e6 samples, 101 res)"
+titles="lib-power:in-process, --power 0.01 --quick|lib-default:in-process, defaults|text-default:text protocol, defaults|mitsuba:Mitsuba 3 ChiSquareTest, as in its BSDF tests"
 for config in "$@"; do
     items=""; ls=0
     for curve in lib-power lib-default text-default mitsuba; do
@@ -167,11 +175,12 @@ unset multiplot
 {
     echo "## 8. Detection curves"
     echo
-    echo "Made at $LABEL, $(uname -m), $(nproc 2>/dev/null || echo '?') cores, load average at the end $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown)."
+    echo "$(uname -m), $(nproc 2>/dev/null || echo '?') cores, load average at the end $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown); each curve made at:"
+    awk -F, 'NR > 1 && !seen[$1 FS $12]++ { printf "%s%s: %s", (n++ ? "; " : ""), $1, $12 } END { print "." }' "$CSV"
     echo
     echo "$plot"
     echo
-    echo "| curve | configuration | EPS | caught | seconds | load |"
+    echo "| curve | configuration | EPS | caught | seconds | load average |"
     echo "|---|---|---|---|---|---|"
     awk -F, 'NR > 1 { printf "| %s | %s | %s%s | %d/%d | %s | %s |\n", $1, $2, $4, ($3 == "none" ? " (honest)" : ""), $5, $6, $10, $11 }' "$CSV"
     [ $MITSUBA = 1 ] || ! printf '%s\n' "$CURVES" | grep -qw mitsuba ||
