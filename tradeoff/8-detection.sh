@@ -60,12 +60,12 @@ KIND=${DET_KIND:-warp}
 if [ "$QUICK" = 1 ]; then # a few minutes: one configuration, three points a curve
     CONFIGS=${DET_CONFIGS:-"matte Kd=1"}
     EPS_LIB_POWER=${DET_EPS_LIB_POWER:-"0.005 0.01 0.02"}
-    EPS_DEFAULT=${DET_EPS_DEFAULT:-"0.02 0.05 0.1"}
+    EPS_DEFAULT=${DET_EPS_DEFAULT:-"0.01 0.02 0.05"}
     EPS_MITSUBA=${DET_EPS_MITSUBA:-"0.01 0.02 0.05"}
 else
     CONFIGS=${DET_CONFIGS:-"matte Kd=1|plastic default"}
-    EPS_LIB_POWER=${DET_EPS_LIB_POWER:-"0.0025 0.005 0.01 0.02 0.05"}
-    EPS_DEFAULT=${DET_EPS_DEFAULT:-"0.01 0.02 0.05 0.1 0.2"}
+    EPS_LIB_POWER=${DET_EPS_LIB_POWER:-"0.0025 0.005 0.01 0.02"}
+    EPS_DEFAULT=${DET_EPS_DEFAULT:-"0.005 0.01 0.02 0.05 0.1"}
     EPS_MITSUBA=${DET_EPS_MITSUBA:-"0.005 0.01 0.02 0.05 0.1"}
 fi
 MPY=${MITSUBA_PYTHON:-python3}
