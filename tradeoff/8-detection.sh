@@ -28,7 +28,8 @@
 # lists), DET_LABEL (what the curves were made at, in the CSV and the report;
 # default the source's git commit), DET_KEEP (an earlier 8-detection.csv:
 # its rows of the curves not in DET_CURVES are kept, so that one curve can
-# be measured again on another build and plotted with the others).
+# be measured again on another build and plotted with the others; with
+# DET_CURVES=" " it only draws).
 # Writes OUT/8-detection.csv (one row a point: curve, configuration, kind,
 # eps, caught, runs, rate, its 95% Wilson interval, seconds, load average,
 # label),
@@ -139,7 +140,7 @@ mv "$TMP/csv" "$CSV"
 slug() { printf '%s' "$1" | tr -c 'A-Za-z0-9' '_'; }
 IFS='|'; set -- $CONFIGS; unset IFS
 panels=0; plots=""
-titles="lib-power:in-process, --power 0.01 --quick|lib-default:in-process, defaults|text-default:text protocol, defaults|mitsuba:Mitsuba 3 ChiSquareTest, as in its BSDF tests"
+titles="lib-power:in-process --power 0.01|lib-default:in-process defaults|text-default:text protocol defaults|mitsuba:Mitsuba 3 chi2 test"
 for config in "$@"; do
     items=""; ls=0
     for curve in lib-power lib-default text-default mitsuba; do
@@ -149,7 +150,7 @@ for config in "$@"; do
         [ -s "$OUT/$f" ] || { rm -f "$OUT/$f"; continue; }
         honest=$(awk -F, -v c="$curve" -v cf="$config" '$1 == c && $2 == cf && $4 + 0 == 0 { print $5 "/" $6 }' "$CSV")
         t=$(printf '%s\n' "$titles" | tr '|' '\n' | awk -F: -v c="$curve" '$1 == c { print $2 }')
-        item="'$f' using 4:7:8:9 with yerrorlines ls $ls title '$t; honest: ${honest:-?} rejected'"
+        item="'$f' using 4:7:8:9 with yerrorlines ls $ls title '$t (honest ${honest:-?})'"
         if [ -z "$items" ]; then items=$item; else items="$items, \\
      $item"; fi
     done
@@ -162,7 +163,7 @@ done
 plot=$(tr_plot 8-detection "Detection curves: planted error size against detection rate" "8-detection.csv" "
 set multiplot layout 1,$panels
 set xlabel 'EPS (relative size of the planted error)'
-set ylabel 'fraction of seeded runs that fail'
+set ylabel 'fraction of seeded runs that fail (honest: false rejections)'
 eval logx
 set xrange [0.0018:0.3]
 set yrange [-0.03:1.03]
