@@ -138,7 +138,8 @@ mv "$TMP/csv" "$CSV"
 
 # one data file per (curve, configuration), planted points only
 slug() { printf '%s' "$1" | tr -c 'A-Za-z0-9' '_'; }
-IFS='|'; set -- $CONFIGS; unset IFS
+# a panel per configuration in the CSV (kept rows too), in order
+IFS='|'; set -- $(awk -F, 'NR > 1 && !seen[$2]++ { printf "%s%s", (n++ ? "|" : ""), $2 }' "$CSV"); unset IFS
 panels=0; plots=""
 titles="lib-power:in-process --power 0.01|lib-default:in-process defaults|text-default:text protocol defaults|mitsuba:Mitsuba 3 chi2 test"
 for config in "$@"; do
