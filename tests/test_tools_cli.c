@@ -11,7 +11,8 @@
  * naming the option before anything runs); an option given last without its
  * value named as such (not as unknown), a --dir that is not a directory,
  * output paths checked before the work and nothing half-written
- * (materia-sheet, materia-golden).
+ * (materia-sheet, materia-golden); the detection-curve scripts' --help
+ * and usage errors (tradeoff/8-detection.sh, mitsuba_detection.py).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -349,6 +350,42 @@ static void others(void)
                  "unknown option --bogus");
 }
 
+/* The detection-curve script (tradeoff/8-detection.sh, not run by make
+ * check: tens of minutes) and its Mitsuba half: --help, and the mistakes
+ * that stop them before any measurement. A few ms. */
+static void detection_script(void)
+{
+    static const struct {
+        const char *name, *cmd;
+        int status;
+        const char *text;
+    } runs[] = {
+        {"8-detection.sh --help: its usage, status 0", "sh tradeoff/8-detection.sh --help", 0, "DET_CURVES"},
+        {"8-detection.sh without a build: status 1, saying what to set",
+         "DET_BUILD= MT_BIN= OUT=. sh tradeoff/8-detection.sh", 1, "set DET_BUILD"},
+        {"8-detection.sh with a build that lacks the programs: status 1, named",
+         "DET_BUILD=nosuchdir OUT=. sh tradeoff/8-detection.sh", 1, "nosuchdir/bin/materia-conformance: not built"},
+        {"mitsuba_detection.py --help: status 0", "python3 tradeoff/mitsuba_detection.py --help", 0, "usage:"},
+        {"mitsuba_detection.py: an unknown configuration is status 2, named",
+         "python3 tradeoff/mitsuba_detection.py x.so 'glass' warp 0.01 1", 2, "'glass': not one of"}};
+    char cmd[512], *out = NULL;
+    size_t i;
+    int rc, py = t_run_output("python3 -c 'import sys; sys.exit(sys.version_info < (3, 6))' 2>/dev/null", &out) == 0;
+    free(out);
+    for (i = 0; i < sizeof runs / sizeof runs[0]; ++i) {
+        if (!py && strstr(runs[i].cmd, "python3")) {
+            t_skip(runs[i].name, "python3 (3.6 or later) is not installed");
+            continue;
+        }
+        snprintf(cmd, sizeof cmd, "%s 2>&1", runs[i].cmd);
+        out = NULL;
+        rc = t_run_output(cmd, &out);
+        t_check(rc == runs[i].status && out && strstr(out, runs[i].text), runs[i].name, "status %d: %s", rc,
+                out ? out : "");
+        free(out);
+    }
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
@@ -365,6 +402,7 @@ int main(int argc, char **argv)
     no_value();
     only_dialect();
     others();
+    detection_script();
     t_tmpdir_remove();
     return t_status();
 }
