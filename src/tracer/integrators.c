@@ -81,6 +81,53 @@ mt_rgb mt__escaped(const mt_scene *s, mt_vec3 d)
     return L;
 }
 
+/* The next direction at a vertex whose BSDF has only specular components,
+ * two or more of them (glass: reflection and transmission). pbrt-v2's
+ * BSDF::Sample_f picks one of the m with probability 1/m and returns its
+ * f with pdf 1/m, so a path through glass is weighted by m F or m (1 - F)
+ * and is killed half the time where F is small. Each component's sample is
+ * a fixed direction here (a specular BxDF reads neither u1 nor u2), so all m
+ * are drawn -- the component k through u_component = (k + 1/2) / m, the same
+ * f and direction that pbrt-v2's choice of k gives -- and one is chosen
+ * with probability p_k proportional to the sum of the channels of its
+ * weight f_k |cos| / pdf_k, using u; the sample's pdf is set to p_k, so that
+ * f |cos| / pdf = f_k |cos| / p_k. The expectation, sum over k of
+ * f_k |cos|, is BSDF::Sample_f's; only the noise of the choice goes (the
+ * Fresnel-weighted choice of pbrt-v3's FresnelSpecular). A component that
+ * gives nothing (total internal reflection) is never chosen. */
+static mt_bsdf_sample sample_specular_only(const mt__vertex *v, const mt_real u[2])
+{
+    mt_bsdf_sample cand[MT_MAX_BXDFS], none;
+    mt_real w[MT_MAX_BXDFS], total = 0, x;
+    int m = v->ncomp, k, last = 0;
+    memset(&none, 0, sizeof none);
+    if (m > MT_MAX_BXDFS) m = MT_MAX_BXDFS;
+    for (k = 0; k < m; ++k) {
+        mt_bsdf_sample *c = &cand[k];
+        *c = mt__bsdf_sample_f_wo(v->bsdf, &v->bwo, ((mt_real)k + (mt_real)0.5) / (mt_real)m, u[1], u[1],
+                                  MT_BSDF_ALL);
+        w[k] = 0;
+        if (c->pdf > 0 && !mt_rgb_is_black(c->f)) {
+            mt_rgb g = mt_rgb_scale(c->f, mt_v3_absdot(c->wi, v->n) / c->pdf);
+            w[k] = mt_fabs(g.c[0]) + mt_fabs(g.c[1]) + mt_fabs(g.c[2]);
+            if (!mt_is_finite(w[k])) w[k] = 0;
+        }
+        total += w[k];
+    }
+    if (!(total > 0) || !mt_is_finite(total)) return none;
+    x = u[0] * total;
+    for (k = 0; k < m; ++k) {
+        if (!(w[k] > 0)) continue;
+        last = k;
+        if (x < w[k]) break;
+        x -= w[k];
+    }
+    /* rounding may leave x at or above the last weight: that component */
+    if (k == m) k = last;
+    cand[k].pdf = w[k] / total;
+    return cand[k];
+}
+
 static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, mt_real diff_scale, const mt_hit *first)
 {
     const mt_scene *s = tc->scene;
@@ -109,7 +156,8 @@ static mt_rgb path_li(mt__thread_ctx *tc, const mt_raydiff *rd, mt_real diff_sca
         /* the next direction (pair 2), which is also direct lighting's BSDF
          * sample whenever it comes from a non-specular component */
         mt__vertex_sample(tc, bounces, 2, 0, 1, dir);
-        bs = mt__sample_bsdf_pair(&v, dir, MT_BSDF_ALL);
+        if (v.ncomp_nonspecular == 0 && v.ncomp > 1) bs = sample_specular_only(&v, dir);
+        else bs = mt__sample_bsdf_pair(&v, dir, MT_BSDF_ALL);
         if (mt_rgb_is_black(bs.f) || bs.pdf == 0) break;
         specular = (bs.type & MT_BSDF_SPECULAR) != 0;
         beta = mt_rgb_mul(beta, mt_rgb_scale(bs.f, mt_v3_absdot(bs.wi, v.n) / bs.pdf));
