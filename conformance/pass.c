@@ -316,7 +316,12 @@ static long power_samples(const cf_ctx *x)
         pd[nw++].mdof = mdof;
         free(pc);
     }
-    return cf_power_samples_for(run->power, nw, pd, run->cfg.alpha_test, 0.95, run->power_max);
+    {
+        /* nothing the distribution tests could see (delta lobes alone):
+         * the run's own samples, not --power's cap */
+        long n = cf_power_samples_for(run->power, nw, pd, run->cfg.alpha_test, 0.95, run->power_max);
+        return n > 0 ? n : run->cfg.samples;
+    }
 }
 
 /* Its samples, a chunk at a time (memory bounded whatever their number;

@@ -232,17 +232,32 @@ static long samples_for(int test, int ref, double eps, int nwo, const cf_power_d
     return hi;
 }
 
+/* Whether test sees ref at all at some direction (its shape not 0). */
+static int visible(int test, int ref, int nwo, const cf_power_dir *d)
+{
+    int w;
+    for (w = 0; w < nwo; ++w)
+        if (d[w].v[test][ref] > 0 && (test == CF_PW_CHI2 ? d[w].dof : d[w].mdof) >= 1) return 1;
+    return 0;
+}
+
 long cf_power_samples_for(double eps, int nwo, const cf_power_dir *d, double alpha, double want, long max)
 {
-    long need = 1;
+    long need = 0;
     int ref, test;
     for (ref = 0; ref < CF_PW_NREF; ++ref) {
         long best = max;
+        int seen = 0;
         for (test = 0; test < CF_PW_NTEST; ++test) {
-            long n = samples_for(test, ref, eps, nwo, d, alpha, want, max);
+            long n;
+            if (!visible(test, ref, nwo, d)) continue;
+            seen = 1;
+            n = samples_for(test, ref, eps, nwo, d, alpha, want, max);
             if (n < best) best = n;
         }
-        if (best > need) need = best;
+        /* a reference no test can see (a configuration of delta lobes
+         * alone: no cells) asks for nothing; more samples would not help */
+        if (seen && best > need) need = best;
     }
     return need;
 }

@@ -86,7 +86,8 @@ double cf_power_min_eps(int test, int ref, int nwo, const cf_power_dir *d, doubl
 /* The samples per direction with which each reference mismatch of size eps
  * is caught with probability want by the test most powerful against it
  * (the most the two references need), from the directions' shapes (their
- * n ignored), capped at max. */
+ * n ignored), capped at max; 0 when no test sees either reference (no
+ * direction has cells: delta lobes alone). */
 long cf_power_samples_for(double eps, int nwo, const cf_power_dir *d, double alpha, double want, long max);
 
 /* An estimate before any pilot (the pilot's size is set from it): the
