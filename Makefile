@@ -365,7 +365,7 @@ OTHER_QUERY     := $(OTHER_BUILD)/bin/materia-query
 # the left-out formats works, and the full builds run the statistics.
 CONF_ARGS       := $(if $(SANITIZE)$(OMIT),--lite,--ulps $(OTHER_CONF))
 
-check: all tests benches tradeoffs $(if $(SANITIZE)$(OMIT),,other-conformance)
+check: all tests $(if $(SANITIZE)$(OMIT),,benches tradeoffs other-conformance)
 	@CONF_ARGS="$(CONF_ARGS)" CXX_SKIP="$(CXX_SKIP)" MAKE="$(MAKE)" CC="$(CC)" SANITIZE="$(SANITIZE)" REF_GEN="$(REF_GEN)" \
 	    CXX="$(if $(CXX_OK),$(CXX))" EXAMPLE_LIBS="$(MT_LDLIBS) $(LDLIBS)" \
 	    MATERIA_OTHER_QUERY="$(if $(SANITIZE)$(OMIT),,$(OTHER_QUERY))" \
