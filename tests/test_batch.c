@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "support/toutput.h"
+#include "support/ttools.h"
 
 static int failures;
 
@@ -47,19 +48,13 @@ static int run(const char *cmd, int want, char **out)
 int main(int argc, char **argv)
 {
     static const char *const only = "--only '^(matte Kd=1|plastic default|glass default|mix matte/plastic amount=0.3)$'";
-    char dir[1024], bin[1100], plugins[1100], cmd[8192], *slash;
+    char bin[1100], plugins[1100], cmd[8192];
     char *self = NULL, *plain = NULL, *batched = NULL, *hplain = NULL, *hbatched = NULL;
     char *fallback = NULL, *onealone = NULL, *bad = NULL;
     int ok;
     (void)argc;
-    snprintf(dir, sizeof dir, "%.1000s", argv[0]);
-    slash = strrchr(dir, '/');
-    if (slash)
-        *slash = 0;
-    else
-        snprintf(dir, sizeof dir, ".");
-    snprintf(bin, sizeof bin, "%.1000s/../bin", dir);
-    snprintf(plugins, sizeof plugins, "%.1000s/../plugins", dir);
+    snprintf(bin, sizeof bin, "%.1000s", t_tool_bindir(argv[0]));
+    snprintf(plugins, sizeof plugins, "%.1000s/../plugins", bin);
 
     /* materia in this process, materia-query with batched lines (its
      * default) and with one query a line */
